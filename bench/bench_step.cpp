@@ -1,0 +1,37 @@
+// Particle-steps per second of the full elastic GIMP step (both scatters,
+// grid update, G2P, stress update, grid refit and binning) on the built-in
+// default scene, refined to about 1e5 and 1e6 particles. Run with
+// --benchmark_counters_tabular=true; OMP_NUM_THREADS picks the cores.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <cmath>
+
+#include "runout/scene_parser.hpp"
+#include "runout/simulation.hpp"
+
+namespace {
+
+// The default slide has 200 m2; ppc^2 particles per h^2 gives the h for n.
+runout::Scene default_scene_with(double particles) {
+  runout::Scene s = runout::parse_scene(runout::default_scene_toml(), "default.toml");
+  const double ppc = s.grid.ppc;
+  runout::apply_overrides(s, ppc * std::sqrt(200.0 / particles), std::nullopt);
+  return s;
+}
+
+void BM_ElasticGimpStep(benchmark::State& state) {
+  runout::Simulation sim(default_scene_with(static_cast<double>(state.range(0))));
+  sim.advance_to(10 * sim.stable_dt());  // past start-up transients
+  for (auto _ : state) sim.step(sim.stable_dt());
+  const double n = sim.particles().size();
+  state.counters["particles"] = n;
+  state.counters["threads"] = omp_get_max_threads();
+  state.counters["particle_steps_per_s"] =
+      benchmark::Counter(n * state.iterations(), benchmark::Counter::kIsRate);
+}
+
+}  // namespace
+
+BENCHMARK(BM_ElasticGimpStep)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_MAIN();

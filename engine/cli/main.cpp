@@ -1,0 +1,142 @@
+// runout: the command line. Exit codes follow sysexits(3): 64 usage, 65 the
+// scene is invalid, 66 the scene file cannot be read, 70 the run blew up
+// (frames before it are kept), 73 the output cannot be written.
+#include <omp.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+
+#include "progress.hpp"
+#include "runout/device_info.hpp"
+#include "runout/run.hpp"
+#include "runout/scene_parser.hpp"
+#include "runout/simulation.hpp"
+
+namespace {
+
+using namespace runout;
+
+enum Exit { kOk = 0, kUsage = 64, kSceneInvalid = 65, kNoScene = 66, kBlowUp = 70, kCantCreate = 73 };
+
+struct SceneArgs {
+  std::string path;  // empty: the built-in default scene
+  std::optional<double> cell;
+  std::optional<int> ppc;
+};
+
+void add_scene_args(CLI::App* cmd, SceneArgs& a) {
+  cmd->add_option("scene", a.path, "Scene file (TOML); the built-in default scene if omitted");
+  cmd->add_option("--cell", a.cell, "Override the cell size h [m]");
+  cmd->add_option("--ppc", a.ppc, "Override the particles per cell per direction");
+}
+
+Scene load(const SceneArgs& a) {
+  Scene s = a.path.empty() ? parse_scene(default_scene_toml(), "default.toml")
+                           : load_scene_file(a.path);
+  apply_overrides(s, a.cell, a.ppc);
+  return s;
+}
+
+int check(const Scene& s) {
+  Simulation sim(s);
+  const double dt = sim.stable_dt();
+  const int n = sim.particles().size();
+  const double h = s.grid.cell_size;
+  const long cells = std::lround((s.grid.max.x() - s.grid.min.x()) / h) *
+                     std::lround((s.grid.max.y() - s.grid.min.y()) / h);
+  // Per particle: 16 doubles, 2 ints and an id of state, 2 doubles and 3
+  // ints of scratch; per box node: 11 doubles.
+  const double bytes = n * (16 * 8 + 2 * 4 + 8 + 2 * 8 + 3 * 4.0);
+  std::cout << to_toml(s) << "\n# particles:        " << n << "\n# domain cells:     " << cells
+            << "\n# initial dt:       " << dt << " s (Courant " << s.time.courant << ")"
+            << "\n# steps (about):    " << std::lround(s.time.end / dt)
+            << " (dt falls as the slide speeds up)"
+            << "\n# memory (about):   " << bytes / 1048576.0
+            << " MiB of particles, plus a grid box of 88 bytes per node\n";
+  return kOk;
+}
+
+int run(const Scene& s, const std::string& out, bool quiet) {
+  RunOptions opt;
+  opt.out_dir = out.empty() ? "out/" + s.name : out;
+  ProgressReporter progress;
+  if (!quiet) opt.on_progress = [&](const RunProgress& p) { progress.update(p); };
+  RunSummary r;
+  try {
+    r = run_scene(s, opt);
+  } catch (const std::exception& e) {
+    progress.finish();
+    std::cerr << "runout: cannot write the output: " << e.what() << "\n";
+    return kCantCreate;
+  }
+  progress.finish();
+  const double rate = r.wall_seconds > 0 ? r.particles * double(r.steps) / r.wall_seconds : 0;
+  std::printf("%s: %d particles, %ld steps to t = %.4g s in %.2f s (%.3g particle-steps/s, %d threads)\n",
+              s.name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds, rate,
+              omp_get_max_threads());
+  std::printf("output: %s (%d frames)\n", r.pvd_path.c_str(), r.frames);
+  if (r.failed) {
+    std::cerr << "runout: run stopped: " << r.failure << "\nrunout: the " << r.frames
+              << " frames written before it are kept in " << opt.out_dir << "\n";
+    return kBlowUp;
+  }
+  return kOk;
+}
+
+int info() {
+  std::printf("runout %s\nOpenMP threads: %d\n", RUNOUT_VERSION, omp_get_max_threads());
+  std::string why;
+  const auto devices = cuda_devices(why);
+  if (devices.empty()) std::printf("CUDA devices: none (%s)\n", why.c_str());
+  for (const auto& d : devices) std::printf("CUDA device %s\n", d.c_str());
+  return kOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Runout: submarine landslide runout with the material point method"};
+  app.set_version_flag("--version", std::string("runout ") + RUNOUT_VERSION);
+  app.require_subcommand(1);
+
+  SceneArgs run_args, check_args;
+  std::string out;
+  int threads = 0;
+  bool quiet = false;
+  CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its frames and history");
+  add_scene_args(run_cmd, run_args);
+  run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)");
+  run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
+  CLI::App* check_cmd =
+      app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
+  add_scene_args(check_cmd, check_args);
+  app.add_subcommand("info", "Version, threads and CUDA devices");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kUsage;
+  }
+  if (threads > 0) omp_set_num_threads(threads);
+  try {
+    if (*run_cmd) return run(load(run_args), out, quiet);
+    if (*check_cmd) return check(load(check_args));
+    return info();
+  } catch (const SceneFileError& e) {
+    std::cerr << "runout: " << e.what() << "\n";
+    return kNoScene;
+  } catch (const SceneError& e) {
+    std::cerr << "runout: " << e.what() << "\n";
+    return kSceneInvalid;
+  } catch (const NumericalFailure& e) {
+    std::cerr << "runout: " << e.what() << "\n";
+    return kBlowUp;
+  }
+}

@@ -1,0 +1,44 @@
+#pragma once
+// The background grid: a box of nodes that follows the particles inside the
+// scene's domain. Node (i, j) of the box is global node (i0 + i, j0 + j),
+// global node (0, 0) being the domain's min corner. Nodal fields are reset
+// every step, so moving the box costs nothing but a resize when it grows.
+#include <vector>
+
+#include "runout/host_device.hpp"
+#include "runout/kinds.hpp"
+
+namespace runout {
+
+struct GridView {
+  int nx = 0, ny = 0;       // nodes in the box
+  int i0 = 0, j0 = 0;       // global index of the box's node (0, 0)
+  double ox = 0, oy = 0;    // position of the box's node (0, 0)
+  double h = 0;
+  double *m;                // mass
+  double *px, *py;          // momentum (then, in MUSL, the remapped momentum)
+  double *fx, *fy;          // internal + external force
+  double *v0x, *v0y;        // velocity at the start of the step, p/m
+  double *vx, *vy;          // velocity at the end of the step, constrained
+  double *vmx, *vmy;        // mid-step velocity (v0 + v)/2, constrained
+
+  RUNOUT_HD int index(int i, int j) const { return j * nx + i; }
+  RUNOUT_HD int size() const { return nx * ny; }
+};
+
+class Grid {
+ public:
+  // Sets the box to cover nodes [i_lo, i_hi] x [j_lo, j_hi] (global) and
+  // zeroes mass, momentum and force. Storage only ever grows.
+  void fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x, double domain_y,
+           double h);
+  GridView view() { return view_; }
+  const GridView& view() const { return view_; }
+  std::size_t capacity() const { return m_.size(); }
+
+ private:
+  GridView view_;
+  std::vector<double> m_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_;
+};
+
+}  // namespace runout

@@ -1,0 +1,38 @@
+#pragma once
+// Particle state in structure-of-arrays, double precision. Particles owns
+// the storage (host); ParticleView is the plain-pointer handle the
+// per-particle stage functions take, so the same functions run in CUDA
+// kernels on device copies.
+#include <cstdint>
+#include <vector>
+
+namespace runout {
+
+struct ParticleView {
+  int n = 0;
+  double *x, *y;          // current position [m]
+  double *vx, *vy;        // velocity [m/s]
+  double *mass;           // [kg per metre out of plane]
+  double *vol0, *vol;     // initial and current volume [m2 per metre]
+  double *sxx, *syy, *sxy, *szz;  // Cauchy stress, tension positive [Pa]
+  double *xi;             // accumulated plastic shear strain
+  double *gamma_dot;      // shear strain rate [1/s]
+  double *su;             // current undrained strength [Pa] (0 for elastic)
+  double *x0, *y0;        // initial position [m]
+  int *body;              // body index in the scene
+  int *material;          // material index in the scene
+  std::int64_t *id;       // stable particle id
+};
+
+struct Particles {
+  std::vector<double> x, y, vx, vy, mass, vol0, vol, sxx, syy, sxy, szz, xi,
+      gamma_dot, su, x0, y0;
+  std::vector<int> body, material;
+  std::vector<std::int64_t> id;
+
+  int size() const { return static_cast<int>(x.size()); }
+  void resize(int n);
+  ParticleView view();
+};
+
+}  // namespace runout

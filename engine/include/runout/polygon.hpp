@@ -1,0 +1,13 @@
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+namespace runout {
+
+using Polygon = std::vector<Eigen::Vector2d>;
+
+double signed_area(const Polygon& polygon);  // > 0 when counter-clockwise
+bool is_simple(const Polygon& polygon);      // no two non-adjacent edges meet
+bool contains(const Polygon& polygon, const Eigen::Vector2d& point);  // even-odd rule
+
+}  // namespace runout

@@ -1,0 +1,14 @@
+#pragma once
+#include "runout/particles.hpp"
+#include "runout/scene.hpp"
+
+namespace runout {
+
+// Fills every body's polygon with ppc x ppc particles per grid cell, on the
+// lattice of sub-cell centres of the scene's grid (so a fully covered cell
+// holds exactly ppc^2 particles), a sub-cell centre inside the polygon
+// becoming a particle of volume (h/ppc)^2 and mass density * volume.
+// Stress starts at zero; x0/y0 = position; ids run 0..n-1 in body order.
+Particles seed_particles(const Scene& scene);
+
+}  // namespace runout

@@ -1,0 +1,69 @@
+#pragma once
+// The CPU (OpenMP) driver of the explicit MPM step: it owns the particles,
+// the grid box and the scratch, and calls the stage functions of stages.hpp
+// in order. Particle-to-grid is scattered by block colouring, so it is
+// race-free and gives the same sums in the same order whatever the number
+// of threads.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "runout/grid.hpp"
+#include "runout/material.hpp"
+#include "runout/particles.hpp"
+#include "runout/scene.hpp"
+#include "runout/stages.hpp"
+
+namespace runout {
+
+// A step produced non-finite values or lost a particle from the domain.
+// The state is then unusable; what was written before stays good.
+class NumericalFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Simulation {
+ public:
+  explicit Simulation(const Scene& scene);              // seeds the bodies
+  Simulation(const Scene& scene, Particles particles);  // given particles
+
+  // dt = C h / max_p (c_p + |v_p|) from the current state.
+  double stable_dt() const { return courant_ * h_ / max_signal_speed_; }
+  // One step of size dt. Throws NumericalFailure.
+  void step(double dt);
+  // Steps with the CFL dt, shortening the last one to land on t exactly.
+  void advance_to(double t);
+
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  double last_dt() const { return last_dt_; }
+  Particles& particles() { return particles_; }
+  const Particles& particles() const { return particles_; }
+  const Grid& grid() const { return grid_; }
+  const StepConfig& config() const { return config_; }
+
+ private:
+  void fit_grid();
+  void bin_particles();  // and computes the particles' stencils
+  template <class Stage>
+  void scatter(Stage&& stage);
+  void check_state(double max_speed);
+
+  Particles particles_;
+  Grid grid_;
+  StepConfig config_;
+  std::vector<MaterialParams> materials_;
+  std::vector<double> scratch_dx_, scratch_dy_;
+  std::vector<Stencil2D> stencils_;
+  // Particles grouped by block of kBlock x kBlock cells (counting sort).
+  std::vector<int> block_start_, order_, particle_block_, scratch_next_;
+  int blocks_x_ = 0, blocks_y_ = 0;
+  Eigen::Vector2d domain_min_, domain_max_;
+  double h_, courant_;
+  double max_signal_speed_ = 0;
+  double time_ = 0, last_dt_ = 0;
+  long steps_ = 0;
+};
+
+}  // namespace runout

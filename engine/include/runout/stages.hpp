@@ -1,0 +1,235 @@
+#pragma once
+// One explicit MPM step, stage by stage, as per-particle and per-node
+// functions. They take plain views and a scatter functor, hold no state and
+// allocate nothing, so the CPU driver (simulation.cpp) and a CUDA kernel can
+// call them unchanged.
+//
+// The step is MUSL (modified update-stress-last, Sulsky et al. 1995):
+//   1. p2g:            m_i, p_i = sum N m v, f_i = sum (-V sigma grad N + N m g)
+//   2. grid_update:    v0_i = p_i/m_i, v_i = v0_i + dt f_i/m_i, boundary conditions
+//   3. g2p:            v_p += FLIP/PIC blend; step displacement dt * sum N vmid
+//   4. p2g_momentum:   p_i = sum N m v_p(new)            (the MUSL remap)
+//   5. remap_velocity: v_i = p_i/m_i, boundary conditions
+//   6. stress_update:  L = sum v_i (x) grad N, volume, Jaumann stress; then move
+// MUSL rather than USL because the stress is computed from the remapped
+// velocity: at nodes with a tiny share of mass (free surface, a particle
+// entering a cell) v0 + dt f/m is spurious, and USL turns it into stress.
+// The price is a second scatter of momentum. Every stage evaluates the
+// shape functions at the positions of the start of the step, so the
+// particle moves only in the last stage.
+#include <cmath>
+
+#include "runout/grid.hpp"
+#include "runout/host_device.hpp"
+#include "runout/material.hpp"
+#include "runout/particles.hpp"
+#include "runout/shape.hpp"
+
+namespace runout {
+
+struct StepConfig {
+  ShapeKind shape = ShapeKind::Gimp;
+  double lp = 0;                 // GIMP particle half-width h / (2 ppc)
+  double gx = 0, gy = 0;         // gravity
+  double flip = 0.99;            // PIC/FLIP blend
+  double min_node_mass = 0;      // nodes at or below this are not accelerated
+  double damping = 0;            // Cundall local damping coefficient
+  // Boundary conditions on the domain's sides; the domain spans global
+  // nodes 0..domain_nx by 0..domain_ny, and ghost nodes beyond a side take
+  // that side's condition.
+  BoundaryKind left = BoundaryKind::Slip, right = BoundaryKind::Slip;
+  BoundaryKind bottom = BoundaryKind::Fixed, top = BoundaryKind::Free;
+  int domain_nx = 0, domain_ny = 0;
+};
+
+// Per-particle scratch of one step: the displacement, applied at the end.
+struct StepScratch {
+  double *dx, *dy;
+};
+
+// P-wave speed sqrt(M / rho) at the current density plus the particle's
+// speed: the signal speed of the CFL condition dt = C h / max(c + |v|).
+RUNOUT_HD inline double cfl_speed(const ParticleView& P, int p, const MaterialParams& mat) {
+  const double rho = P.mass[p] / P.vol[p];
+  const double speed = std::sqrt(P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p]);
+  return std::sqrt(p_wave_modulus(mat) / rho) + speed;
+}
+
+// The particle's shape functions for the whole step: every stage evaluates
+// them at the start-of-step position, so they are computed once.
+struct Stencil2D {
+  Stencil1D x, y;
+};
+
+RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, double xp, double yp,
+                                   Stencil2D& s) {
+  stencil_1d(c.shape, xp, g.ox, g.h, c.lp, s.x);
+  stencil_1d(c.shape, yp, g.oy, g.h, c.lp, s.y);
+}
+
+// Visits the 3 x 3 nodes of a stencil: f(node, N, dN/dx, dN/dy).
+template <class F>
+RUNOUT_HD inline void for_each_node(const GridView& g, const Stencil2D& s, F&& f) {
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      const int node = g.index(s.x.first + a, s.y.first + b);
+      f(node, s.x.w[a] * s.y.w[b], s.x.dw[a] * s.y.w[b], s.x.w[a] * s.y.dw[b]);
+    }
+  }
+}
+
+// Stage 1. add(array, node, value) does array[node] += value: a plain add
+// under the CPU's colouring, an atomic add on a GPU.
+template <class Add>
+RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
+                          const StepConfig& c, Add&& add) {
+  const double m = P.mass[p], V = P.vol[p];
+  const double vx = P.vx[p], vy = P.vy[p];
+  const double sxx = P.sxx[p], syy = P.syy[p], sxy = P.sxy[p];
+  for_each_node(g, st, [&](int n, double N, double dNx, double dNy) {
+    if (N == 0.0 && dNx == 0.0 && dNy == 0.0) return;
+    add(g.m, n, N * m);
+    add(g.px, n, N * m * vx);
+    add(g.py, n, N * m * vy);
+    add(g.fx, n, -V * (sxx * dNx + sxy * dNy) + N * m * c.gx);
+    add(g.fy, n, -V * (sxy * dNx + syy * dNy) + N * m * c.gy);
+  });
+}
+
+// Projects a nodal velocity onto the domain's boundary conditions.
+RUNOUT_HD inline void constrain(const GridView& g, const StepConfig& c, int n, double& vx,
+                                double& vy) {
+  const int gi = g.i0 + n % g.nx;
+  const int gj = g.j0 + n / g.nx;
+  auto apply = [&](BoundaryKind kind, bool normal_is_x) {
+    if (kind == BoundaryKind::Fixed) {
+      vx = 0.0;
+      vy = 0.0;
+    } else if (kind == BoundaryKind::Slip) {
+      (normal_is_x ? vx : vy) = 0.0;
+    }
+  };
+  if (gi <= 0) apply(c.left, true);
+  if (gi >= c.domain_nx) apply(c.right, true);
+  if (gj <= 0) apply(c.bottom, false);
+  if (gj >= c.domain_ny) apply(c.top, false);
+}
+
+// Stage 2. Cundall's local damping, f - alpha |f| sign(v) per component,
+// removes energy without a viscosity scale, for quasi-static settling.
+RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c, double dt) {
+  const double m = g.m[n];
+  if (m <= c.min_node_mass) {
+    g.v0x[n] = g.v0y[n] = g.vx[n] = g.vy[n] = g.vmx[n] = g.vmy[n] = 0.0;
+    return;
+  }
+  const double v0x = g.px[n] / m, v0y = g.py[n] / m;
+  double fx = g.fx[n], fy = g.fy[n];
+  if (c.damping > 0.0) {
+    fx -= c.damping * std::fabs(fx) * (v0x > 0.0 ? 1.0 : (v0x < 0.0 ? -1.0 : 0.0));
+    fy -= c.damping * std::fabs(fy) * (v0y > 0.0 ? 1.0 : (v0y < 0.0 ? -1.0 : 0.0));
+  }
+  double vx = v0x + dt * fx / m, vy = v0y + dt * fy / m;
+  constrain(g, c, n, vx, vy);
+  double vmx = 0.5 * (v0x + vx), vmy = 0.5 * (v0y + vy);
+  constrain(g, c, n, vmx, vmy);
+  g.v0x[n] = v0x;
+  g.v0y[n] = v0y;
+  g.vx[n] = vx;
+  g.vy[n] = vy;
+  g.vmx[n] = vmx;
+  g.vmy[n] = vmy;
+}
+
+// Stage 3. FLIP carries the particle's own velocity plus the grid's change
+// (little dissipation), PIC takes the grid velocity (stable, dissipative).
+// The displacement integrates the mid-step velocity (trapezoidal rule),
+// which is exact under constant acceleration: x0 + v0 t + g t^2 / 2 at any
+// dt, where x += dt v_new would be off by g t dt / 2.
+RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
+                          const StepConfig& c, double dt, const StepScratch& s) {
+  double pic_x = 0, pic_y = 0, dvx = 0, dvy = 0, mid_x = 0, mid_y = 0;
+  for_each_node(g, st, [&](int n, double N, double, double) {
+    pic_x += N * g.vx[n];
+    pic_y += N * g.vy[n];
+    dvx += N * (g.vx[n] - g.v0x[n]);
+    dvy += N * (g.vy[n] - g.v0y[n]);
+    mid_x += N * g.vmx[n];
+    mid_y += N * g.vmy[n];
+  });
+  P.vx[p] = c.flip * (P.vx[p] + dvx) + (1.0 - c.flip) * pic_x;
+  P.vy[p] = c.flip * (P.vy[p] + dvy) + (1.0 - c.flip) * pic_y;
+  s.dx[p] = dt * mid_x;
+  s.dy[p] = dt * mid_y;
+}
+
+// Stage 4: the MUSL remap of the updated particle momentum.
+template <class Add>
+RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D& st,
+                                   const GridView& g, Add&& add) {
+  const double mvx = P.mass[p] * P.vx[p], mvy = P.mass[p] * P.vy[p];
+  for_each_node(g, st, [&](int n, double N, double, double) {
+    if (N == 0.0) return;
+    add(g.px, n, N * mvx);
+    add(g.py, n, N * mvy);
+  });
+}
+
+// Stage 5.
+RUNOUT_HD inline void remap_velocity(const GridView& g, int n, const StepConfig& c) {
+  const double m = g.m[n];
+  if (m <= c.min_node_mass) {
+    g.vx[n] = g.vy[n] = 0.0;
+    return;
+  }
+  double vx = g.px[n] / m, vy = g.py[n] / m;
+  constrain(g, c, n, vx, vy);
+  g.vx[n] = vx;
+  g.vy[n] = vy;
+}
+
+// Stage 6. Velocity gradient L_ab = sum_i v_ia dN_i/dx_b from the remapped
+// velocity; volume by J = det(I + dt L); stress rotated with the spin
+// W = skew(L) (Jaumann rate) and then updated by the material with the
+// strain increment dt sym(L). gamma_dot = sqrt(2 e:e), e the deviator of
+// D = sym(L) with D_zz = 0 (plane strain): the engineering shear strain
+// rate, equal to |dv_x/dy| in simple shear. Returns the particle's P-wave
+// speed plus its speed, for the CFL condition of the next step.
+RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Stencil2D& st,
+                                      const GridView& g, const MaterialParams* materials,
+                                      double dt, const StepScratch& s) {
+  double Lxx = 0, Lxy = 0, Lyx = 0, Lyy = 0;
+  for_each_node(g, st, [&](int n, double, double dNx, double dNy) {
+    Lxx += g.vx[n] * dNx;
+    Lxy += g.vx[n] * dNy;
+    Lyx += g.vy[n] * dNx;
+    Lyy += g.vy[n] * dNy;
+  });
+  const double J = (1.0 + dt * Lxx) * (1.0 + dt * Lyy) - dt * dt * Lxy * Lyx;
+  P.vol[p] *= J;
+
+  const double w = 0.5 * (Lxy - Lyx);  // spin W_xy
+  const double sxx = P.sxx[p], syy = P.syy[p], sxy = P.sxy[p];
+  StressPoint sp{sxx + 2.0 * w * sxy * dt, syy - 2.0 * w * sxy * dt,
+                 sxy + w * (syy - sxx) * dt, P.szz[p], P.xi[p], P.su[p]};
+
+  const double Dxy = 0.5 * (Lxy + Lyx);
+  const double mean = (Lxx + Lyy) / 3.0;
+  const double exx = Lxx - mean, eyy = Lyy - mean, ezz = -mean;
+  const double gamma_dot = std::sqrt(2.0 * (exx * exx + eyy * eyy + ezz * ezz + 2.0 * Dxy * Dxy));
+  const MaterialParams& mat = materials[P.material[p]];
+  update_stress(mat, StrainIncrement{dt * Lxx, dt * Lyy, dt * Dxy, gamma_dot, dt}, sp);
+
+  P.sxx[p] = sp.sxx;
+  P.syy[p] = sp.syy;
+  P.sxy[p] = sp.sxy;
+  P.szz[p] = sp.szz;
+  P.xi[p] = sp.xi;
+  P.su[p] = sp.su;
+  P.gamma_dot[p] = gamma_dot;
+  P.x[p] += s.dx[p];
+  P.y[p] += s.dy[p];
+  return cfl_speed(P, p, mat);
+}
+
+}  // namespace runout

@@ -1,0 +1,34 @@
+#pragma once
+// VTK XML UnstructuredGrid (.vtu) frames of the particles and the .pvd
+// index of a series. Arrays are inline binary (base64, optionally zlib):
+// never appended data, which Debian 12's expat breaks in VTK 9.2
+// (../shared/BUILD.md). Every file is written to a temporary name and
+// renamed, so a killed run never leaves a half-written file.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runout/particles.hpp"
+
+namespace runout {
+
+// One frame: every particle field, plus displacement, the stress tensor and
+// its mean and deviatoric invariants (see docs/output.md). time goes into
+// the field data as TimeValue.
+void write_particles_vtu(const std::string& path, const Particles& particles,
+                         double time, bool compress);
+
+// The .pvd index of a frame series. add() appends a frame and rewrites the
+// index atomically, so the index on disk always lists whole frames only.
+class PvdIndex {
+ public:
+  explicit PvdIndex(std::string path);
+  void add(double time, const std::string& relative_file);
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::vector<std::pair<double, std::string>> frames_;
+};
+
+}  // namespace runout

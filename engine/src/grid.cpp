@@ -1,0 +1,36 @@
+#include "runout/grid.hpp"
+
+#include <algorithm>
+
+namespace runout {
+
+void Grid::fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x,
+               double domain_y, double h) {
+  GridView& g = view_;
+  g.nx = i_hi - i_lo + 1;
+  g.ny = j_hi - j_lo + 1;
+  g.i0 = i_lo;
+  g.j0 = j_lo;
+  g.h = h;
+  g.ox = domain_x + i_lo * h;
+  g.oy = domain_y + j_lo * h;
+  const std::size_t n = static_cast<std::size_t>(g.nx) * g.ny;
+  if (n > m_.size()) {
+    for (auto* a : {&m_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &vmx_, &vmy_})
+      a->resize(n);
+  }
+  g.m = m_.data();
+  g.px = px_.data();
+  g.py = py_.data();
+  g.fx = fx_.data();
+  g.fy = fy_.data();
+  g.v0x = v0x_.data();
+  g.v0y = v0y_.data();
+  g.vx = vx_.data();
+  g.vy = vy_.data();
+  g.vmx = vmx_.data();
+  g.vmy = vmy_.data();
+  for (auto* a : {&m_, &px_, &py_, &fx_, &fy_}) std::fill_n(a->begin(), n, 0.0);
+}
+
+}  // namespace runout

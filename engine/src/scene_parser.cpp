@@ -1,0 +1,575 @@
+#include "runout/scene_parser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "runout/polygon.hpp"
+#include "scene_text.hpp"
+
+namespace runout {
+namespace {
+
+using scene_text::format_number;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+// The values a number may take; an open end excludes its bound.
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+
+  bool contains(double v) const {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+
+  std::string describe() const {
+    if (hi == kInf)
+      return std::string(lo_open ? "> " : ">= ") + format_number(lo);
+    return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) +
+           ", " + format_number(hi) + (hi_open ? ")" : "]");
+  }
+};
+
+Range above(double lo) { return {lo, kInf, true, false}; }
+Range at_least(double lo) { return {lo, kInf, false, false}; }
+// brackets is interval notation: "()", "(]", "[)" or "[]".
+Range between(double lo, double hi, const char* brackets) {
+  return {lo, hi, brackets[0] == '(', brackets[1] == ')'};
+}
+
+const Range kPpcRange = between(1, 16, "[]");
+
+// line 0 means "no line": command-line values, missing files.
+[[noreturn]] void throw_error(const std::string& source, int line,
+                              const std::string& key, const std::string& what) {
+  const std::string where =
+      line > 0 ? source + ":" + std::to_string(line) + ": " : std::string();
+  throw SceneError(where + key + ": " + what, line);
+}
+
+std::string type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table: return "table";
+    case toml::node_type::array: return "array";
+    case toml::node_type::string: return "string";
+    case toml::node_type::integer: return "integer";
+    case toml::node_type::floating_point: return "float";
+    case toml::node_type::boolean: return "boolean";
+    case toml::node_type::date: return "date";
+    case toml::node_type::time: return "time";
+    case toml::node_type::date_time: return "date-time";
+    default: return "nothing";
+  }
+}
+
+std::string in_quotes(std::string_view text) {
+  return "\"" + std::string(text) + "\"";
+}
+
+class TableReader;
+
+// A TOML node together with the dotted key it was found under, so every
+// conversion can name the key and the line when it rejects the value.
+class Value {
+ public:
+  Value(const toml::node& node, std::string key, const std::string& source,
+        int fallback_line)
+      : node_(&node), key_(std::move(key)), source_(&source) {
+    const int own = static_cast<int>(node.source().begin.line);
+    line_ = own > 0 ? own : fallback_line;
+  }
+
+  int line() const { return line_; }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw_error(*source_, line_, key_, what);
+  }
+
+  std::string string() const {
+    if (const auto* s = node_->as_string()) return s->get();
+    fail_type("a string");
+  }
+
+  bool boolean() const {
+    if (const auto* b = node_->as_boolean()) return b->get();
+    fail_type("a boolean");
+  }
+
+  double number(const Range& range = {}) const {
+    double v = 0.0;
+    if (const auto* i = node_->as_integer())
+      v = static_cast<double>(i->get());
+    else if (const auto* f = node_->as_floating_point())
+      v = f->get();
+    else
+      fail_type("a number");
+    check(v, range);
+    return v;
+  }
+
+  int integer(const Range& range) const {
+    const auto* i = node_->as_integer();
+    if (!i) fail_type("an integer");
+    check(static_cast<double>(i->get()), range);
+    return static_cast<int>(i->get());
+  }
+
+  Eigen::Vector2d vec2() const {
+    const toml::array& a = array("an array of 2 numbers [x, y]");
+    if (a.size() != 2)
+      fail("expected an array of 2 numbers [x, y], got " +
+           std::to_string(a.size()) + " values");
+    return {element(a, 0).number(), element(a, 1).number()};
+  }
+
+  std::vector<Eigen::Vector2d> points() const {
+    const toml::array& a = array("an array of [x, y] points");
+    std::vector<Eigen::Vector2d> result;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      result.push_back(element(a, i).vec2());
+    return result;
+  }
+
+  std::vector<std::string> strings() const {
+    const toml::array& a = array("an array of strings");
+    std::vector<std::string> result;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      result.push_back(element(a, i).string());
+    return result;
+  }
+
+  // entries: anything with a `name`, e.g. Named<Enum>.
+  template <class Entry, std::size_t N>
+  const Entry& choice(const Entry (&entries)[N]) const {
+    const std::string text = string();
+    std::string allowed;
+    for (const Entry& entry : entries) {
+      if (entry.name == text) return entry;
+      allowed += (allowed.empty() ? "" : ", ") + in_quotes(entry.name);
+    }
+    fail("must be one of " + allowed + " (got " + in_quotes(text) + ")");
+  }
+
+  TableReader table() const;
+  std::vector<TableReader> tables() const;
+
+ private:
+  [[noreturn]] void fail_type(const std::string& expected) const {
+    fail("expected " + expected + ", got " + type_name(*node_));
+  }
+
+  void check(double v, const Range& range) const {
+    if (!std::isfinite(v)) fail("must be a finite number (got " + format_number(v) + ")");
+    if (!range.contains(v))
+      fail("must be " + range.describe() + " (got " + format_number(v) + ")");
+  }
+
+  const toml::array& array(const std::string& expected) const {
+    if (const auto* a = node_->as_array()) return *a;
+    fail_type(expected);
+  }
+
+  Value element(const toml::array& a, std::size_t i) const {
+    return Value(*a.get(i), key_ + "[" + std::to_string(i) + "]", *source_,
+                 line_);
+  }
+
+  const toml::node* node_;
+  std::string key_;
+  const std::string* source_;
+  int line_ = 0;
+};
+
+// One TOML table of the scene, with its dotted path for messages. Each
+// section first lists the keys it knows (check_keys), so a misspelt key is
+// reported as unknown rather than as the required key it was meant to be.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path,
+              const std::string& source, int line)
+      : table_(&table), path_(std::move(path)), source_(&source), line_(line) {}
+
+  void check_keys(const std::vector<std::string_view>& known) const {
+    const toml::node* first_unknown = nullptr;
+    std::string unknown_key;
+    for (const auto& [key, node] : *table_) {
+      if (std::find(known.begin(), known.end(), key.str()) != known.end())
+        continue;
+      // Report the first one in the file, not in the table's key order.
+      if (!first_unknown || line_of(node) < line_of(*first_unknown)) {
+        first_unknown = &node;
+        unknown_key = std::string(key.str());
+      }
+    }
+    if (first_unknown) value(unknown_key, *first_unknown).fail("unknown key");
+  }
+
+  std::optional<Value> find(std::string_view key) const {
+    if (const toml::node* node = table_->get(key)) return value(key, *node);
+    return std::nullopt;
+  }
+
+  Value need(std::string_view key) const {
+    if (auto found = find(key)) return *found;
+    fail(key, line_, "missing required key");
+  }
+
+  // An absent optional table reads as empty, so its section takes defaults.
+  TableReader optional_table(std::string_view key) const {
+    if (auto found = find(key)) return found->table();
+    static const toml::table empty;
+    return TableReader(empty, path(key), *source_, line_);
+  }
+
+  // For a property derived from several keys (e.g. a body's outline).
+  [[noreturn]] void fail(std::string_view key, int line,
+                         const std::string& what) const {
+    throw_error(*source_, line, path(key), what);
+  }
+
+ private:
+  std::string path(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+
+  int line_of(const toml::node& node) const {
+    return value("", node).line();
+  }
+
+  Value value(std::string_view key, const toml::node& node) const {
+    return Value(node, path(key), *source_, line_);
+  }
+
+  const toml::table* table_;
+  std::string path_;
+  const std::string* source_;
+  int line_;
+};
+
+TableReader Value::table() const {
+  const auto* t = node_->as_table();
+  if (!t) fail_type("a table");
+  return TableReader(*t, key_, *source_, line_);
+}
+
+std::vector<TableReader> Value::tables() const {
+  const std::string expected = "an array of tables ([[" + key_ + "]])";
+  const auto* a = node_->as_array();
+  if (!a) fail_type(expected);
+  if (a->empty()) fail("must have at least one entry");
+  if (!a->is_array_of_tables()) fail_type(expected);
+  std::vector<TableReader> result;
+  for (std::size_t i = 0; i < a->size(); ++i)
+    result.push_back(element(*a, i).table());
+  return result;
+}
+
+// The grid has a node on its min corner; max is pushed out to the next node
+// so the domain is a whole number of cells. The tolerance keeps a max that
+// is already on a node (up to rounding) where it is, which also makes the
+// snap idempotent when a resolved scene is read back.
+void snap_max_to_node(GridSpec& grid) {
+  for (int axis = 0; axis < 2; ++axis) {
+    const double cells =
+        std::ceil((grid.max[axis] - grid.min[axis]) / grid.cell_size - 1e-9);
+    grid.max[axis] = grid.min[axis] + cells * grid.cell_size;
+  }
+}
+
+void read_scene_info(TableReader r, Scene& scene) {
+  r.check_keys({"name", "description"});
+  scene.name = r.need("name").string();
+  if (auto v = r.find("description")) scene.description = v->string();
+}
+
+GridSpec read_grid(TableReader r) {
+  r.check_keys({"cell_size", "min", "max", "shape", "ppc"});
+  GridSpec grid;
+  grid.cell_size = r.need("cell_size").number(above(0.0));
+  grid.min = r.need("min").vec2();
+  const Value max = r.need("max");
+  grid.max = max.vec2();
+  if (auto v = r.find("shape")) grid.shape = v->choice(scene_text::kShapeNames).value;
+  if (auto v = r.find("ppc")) grid.ppc = v->integer(kPpcRange);
+  if ((grid.max.array() <= grid.min.array()).any())
+    max.fail("must be greater than grid.min in both x and y");
+  snap_max_to_node(grid);
+  return grid;
+}
+
+BoundarySpec read_boundary(TableReader r) {
+  r.check_keys({"left", "right", "bottom", "top"});
+  BoundarySpec boundary;
+  const std::pair<const char*, BoundaryKind*> sides[] = {
+      {"left", &boundary.left},
+      {"right", &boundary.right},
+      {"bottom", &boundary.bottom},
+      {"top", &boundary.top}};
+  for (const auto& [key, side] : sides)
+    if (auto v = r.find(key)) *side = v->choice(scene_text::kBoundaryNames).value;
+  return boundary;
+}
+
+TimeSpec read_time(TableReader r) {
+  r.check_keys({"end", "output_interval", "courant"});
+  TimeSpec time;
+  time.end = r.need("end").number(above(0.0));
+  const Value interval = r.need("output_interval");
+  time.output_interval = interval.number(above(0.0));
+  if (auto v = r.find("courant")) time.courant = v->number(between(0, 1, "(]"));
+  if (time.output_interval > time.end)
+    interval.fail("must be <= time.end (got " + format_number(time.output_interval) +
+                  " > " + format_number(time.end) + ")");
+  return time;
+}
+
+// Either a slope (magnitude and angle) or an explicit vector: giving both
+// would leave it unclear which one the run uses.
+GravitySpec read_gravity(TableReader r) {
+  r.check_keys({"magnitude", "slope_angle", "vector"});
+  GravitySpec gravity;
+  const auto magnitude = r.find("magnitude");
+  const auto angle = r.find("slope_angle");
+  if (const auto vector = r.find("vector")) {
+    for (const auto& conflict : {magnitude, angle})
+      if (conflict) conflict->fail("cannot be combined with gravity.vector");
+    gravity.vector = vector->vec2();
+    return gravity;
+  }
+  // The default vector is plain downward gravity, so its length is the
+  // default magnitude.
+  const double g = magnitude ? magnitude->number(at_least(0.0)) : gravity.vector.norm();
+  if (angle) gravity.slope_angle_deg = angle->number(between(-90, 90, "()"));
+  gravity.vector = scene_text::slope_gravity(g, gravity.slope_angle_deg);
+  return gravity;
+}
+
+SolverSpec read_solver(TableReader r) {
+  r.check_keys({"flip", "mass_threshold", "damping"});
+  SolverSpec solver;
+  if (auto v = r.find("flip")) solver.flip = v->number(between(0, 1, "[]"));
+  if (auto v = r.find("mass_threshold"))
+    solver.mass_threshold = v->number(between(0, 1, "[)"));
+  if (auto v = r.find("damping")) solver.damping = v->number(between(0, 1, "[)"));
+  return solver;
+}
+
+std::vector<MaterialSpec> read_materials(const TableReader& root) {
+  std::vector<MaterialSpec> materials;
+  for (const TableReader& r : root.need("material").tables()) {
+    r.check_keys({"name", "model", "density", "youngs_modulus", "poisson_ratio"});
+    MaterialSpec m;
+    const Value name = r.need("name");
+    m.name = name.string();
+    for (const MaterialSpec& earlier : materials)
+      if (earlier.name == m.name) name.fail("duplicate material name " + in_quotes(m.name));
+    if (auto v = r.find("model")) m.model = v->choice(scene_text::kModelNames).value;
+    m.density = r.need("density").number(above(0.0));
+    m.youngs_modulus = r.need("youngs_modulus").number(above(0.0));
+    m.poisson_ratio = r.need("poisson_ratio").number(between(-1, 0.5, "()"));
+    materials.push_back(std::move(m));
+  }
+  return materials;
+}
+
+Polygon read_rectangle(const TableReader& r) {
+  const Eigen::Vector2d lo = r.need("min").vec2();
+  const Value max = r.need("max");
+  const Eigen::Vector2d hi = max.vec2();
+  if ((hi.array() <= lo.array()).any())
+    max.fail("must be greater than min in both x and y");
+  return {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+}
+
+// The base runs along +x from base_start; each side face makes its angle
+// with the base, the rear one leaning forward from base_start and the front
+// one leaning back from the far end of the base.
+Polygon read_trapezoid(const TableReader& r) {
+  const Eigen::Vector2d start = r.need("base_start").vec2();
+  const Value length_value = r.need("base_length");
+  const double length = length_value.number(above(0.0));
+  const double height = r.need("height").number(above(0.0));
+  const Range angle = between(0, 180, "()");
+  const double rear = r.need("rear_angle").number(angle) * kDegree;
+  const double front = r.need("front_angle").number(angle) * kDegree;
+  const double rear_run = height / std::tan(rear);
+  const double front_run = height / std::tan(front);
+  const double top = length - rear_run - front_run;
+  if (!(top > 0.0))
+    length_value.fail(
+        "the top of the trapezoid (base_length - height/tan(rear_angle) - "
+        "height/tan(front_angle)) must be > 0 (got " + format_number(top) + ")");
+  return {start,
+          start + Eigen::Vector2d(length, 0.0),
+          start + Eigen::Vector2d(length - front_run, height),
+          start + Eigen::Vector2d(rear_run, height)};
+}
+
+Polygon read_vertices(const TableReader& r) {
+  const Value vertices = r.need("vertices");
+  Polygon polygon = vertices.points();
+  if (polygon.size() < 3)
+    vertices.fail("expected at least 3 vertices (got " +
+                  std::to_string(polygon.size()) + ")");
+  return polygon;
+}
+
+struct BodyType {
+  std::string_view name;
+  std::vector<std::string_view> keys;
+  Polygon (*read)(const TableReader&);
+};
+
+const BodyType kBodyTypes[] = {
+    {"rectangle", {"min", "max"}, read_rectangle},
+    {"trapezoid",
+     {"base_start", "base_length", "height", "rear_angle", "front_angle"},
+     read_trapezoid},
+    {"polygon", {"vertices"}, read_vertices},
+};
+
+// The solver wants a counter-clockwise simple outline inside the grid.
+Polygon checked_outline(Polygon outline, const GridSpec& grid,
+                        const TableReader& r, int line) {
+  if (!is_simple(outline)) r.fail("polygon", line, "self-intersecting polygon");
+  const double area = signed_area(outline);
+  if (area == 0.0) r.fail("polygon", line, "polygon has zero area");
+  if (area < 0.0) std::reverse(outline.begin(), outline.end());
+  for (const Eigen::Vector2d& v : outline) {
+    if ((v.array() >= grid.min.array()).all() && (v.array() <= grid.max.array()).all())
+      continue;
+    r.fail("polygon", line,
+           "vertex (" + format_number(v.x()) + ", " + format_number(v.y()) +
+               ") lies outside the grid [" + format_number(grid.min.x()) + ", " +
+               format_number(grid.max.x()) + "] x [" + format_number(grid.min.y()) +
+               ", " + format_number(grid.max.y()) + "]");
+  }
+  return outline;
+}
+
+int material_index(const Value& name, const std::vector<MaterialSpec>& materials) {
+  const std::string wanted = name.string();
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == wanted) return static_cast<int>(i);
+  name.fail("unknown material " + in_quotes(wanted));
+}
+
+std::vector<BodySpec> read_bodies(const TableReader& root,
+                                  const std::vector<MaterialSpec>& materials,
+                                  const GridSpec& grid) {
+  std::vector<BodySpec> bodies;
+  for (const TableReader& r : root.need("body").tables()) {
+    // The keys a body may have depend on its type, so the type comes first.
+    const Value type_value = r.need("type");
+    const BodyType& type = type_value.choice(kBodyTypes);
+    std::vector<std::string_view> keys = {"name", "material", "type", "velocity"};
+    keys.insert(keys.end(), type.keys.begin(), type.keys.end());
+    r.check_keys(keys);
+
+    BodySpec body;
+    body.name = r.need("name").string();
+    body.material = material_index(r.need("material"), materials);
+    body.polygon = checked_outline(type.read(r), grid, r, type_value.line());
+    if (auto v = r.find("velocity")) body.velocity = v->vec2();
+    bodies.push_back(std::move(body));
+  }
+  return bodies;
+}
+
+OutputSpec read_output(TableReader r) {
+  r.check_keys({"compress"});
+  OutputSpec output;
+  if (auto v = r.find("compress")) output.compress = v->boolean();
+  return output;
+}
+
+std::vector<std::string> read_run(TableReader r) {
+  r.check_keys({"overrides"});
+  if (auto v = r.find("overrides")) return v->strings();
+  return {};
+}
+
+[[noreturn]] void throw_syntax_error(const std::string& source_name,
+                                     const toml::parse_error& e) {
+  throw_error(source_name, static_cast<int>(e.source().begin.line), "syntax error",
+              std::string(e.description()));
+}
+
+toml::table parse_toml(std::string_view text, const std::string& source_name) {
+#if TOML_EXCEPTIONS
+  try {
+    return toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw_syntax_error(source_name, e);
+  }
+#else
+  toml::parse_result result = toml::parse(text, source_name);
+  if (!result) throw_syntax_error(source_name, result.error());
+  return std::move(result).table();
+#endif
+}
+
+// Command-line values have no line: the flag names them instead.
+template <class Number>
+void check_override(const char* flag, Number value, const Range& range) {
+  const double v = static_cast<double>(value);
+  if (!std::isfinite(v) || !range.contains(v))
+    throw_error("", 0, flag, "must be " + range.describe() + " (got " + format_number(v) + ")");
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& source_name) {
+  const toml::table root_table = parse_toml(text, source_name);
+  const TableReader root(root_table, "", source_name, 1);
+  root.check_keys({"scene", "grid", "boundary", "time", "gravity", "solver",
+                   "material", "body", "output", "run"});
+  Scene scene;
+  read_scene_info(root.need("scene").table(), scene);
+  scene.grid = read_grid(root.need("grid").table());
+  scene.boundary = read_boundary(root.optional_table("boundary"));
+  scene.time = read_time(root.need("time").table());
+  scene.gravity = read_gravity(root.optional_table("gravity"));
+  scene.solver = read_solver(root.optional_table("solver"));
+  scene.materials = read_materials(root);
+  scene.bodies = read_bodies(root, scene.materials, scene.grid);
+  scene.output = read_output(root.optional_table("output"));
+  scene.overrides = read_run(root.optional_table("run"));
+  return scene;
+}
+
+Scene load_scene_file(const std::string& path) {
+  const SceneFileError unreadable("cannot open scene file '" + path + "'");
+  // A directory opens as a stream on Linux; only a regular file is a scene.
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(path, ignored)) throw unreadable;
+  std::ifstream in(path, std::ios::binary);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in.is_open() || in.bad()) throw unreadable;
+  return parse_scene(text, path);
+}
+
+void apply_overrides(Scene& scene, std::optional<double> cell_size,
+                     std::optional<int> ppc) {
+  if (cell_size) {
+    check_override("--cell", *cell_size, above(0.0));
+    scene.grid.cell_size = *cell_size;
+    snap_max_to_node(scene.grid);
+    scene.overrides.push_back("grid.cell_size = " + format_number(*cell_size));
+  }
+  if (ppc) {
+    check_override("--ppc", *ppc, kPpcRange);
+    scene.grid.ppc = *ppc;
+    scene.overrides.push_back("grid.ppc = " + std::to_string(*ppc));
+  }
+}
+
+}  // namespace runout

@@ -1,0 +1,148 @@
+// The resolved scene: every key written, defaults included, so the file
+// beside a run's frames says exactly how it was run and parse_scene reads it
+// back as the same Scene.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "runout/scene_parser.hpp"
+#include "scene_text.hpp"
+
+namespace runout {
+namespace {
+
+using scene_text::name_of;
+
+// Always with a decimal point or exponent, so the value reads as a TOML float.
+std::string number(double value) {
+  std::string text = scene_text::format_number(value);
+  if (text.find_first_not_of("-0123456789") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string vec2(const Eigen::Vector2d& v) {
+  return "[" + number(v.x()) + ", " + number(v.y()) + "]";
+}
+
+std::string quoted(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+          char escape[8];
+          std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(c));
+          out += escape;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+// The parser turns a slope into magnitude * (sin, -cos); |vector| can differ
+// from that magnitude in its last bits, so look next to it for the magnitude
+// that gives back exactly this vector.
+double slope_magnitude(const GravitySpec& gravity) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double norm = gravity.vector.norm();
+  double up = norm, down = norm;
+  for (int step = 0; step < 4; ++step) {
+    for (const double m : {up, down})
+      if (scene_text::slope_gravity(m, gravity.slope_angle_deg) == gravity.vector)
+        return m;
+    up = std::nextafter(up, kInf);
+    down = std::nextafter(down, -kInf);
+  }
+  return norm;
+}
+
+void write_gravity(std::ostream& out, const GravitySpec& gravity) {
+  out << "[gravity]\n";
+  if (gravity.slope_angle_deg == 0.0) {
+    out << "vector = " << vec2(gravity.vector) << "\n";
+  } else {
+    out << "magnitude = " << number(slope_magnitude(gravity)) << "\n"
+        << "slope_angle = " << number(gravity.slope_angle_deg) << "\n";
+  }
+}
+
+void write_material(std::ostream& out, const MaterialSpec& m) {
+  out << "[[material]]\n"
+      << "name = " << quoted(m.name) << "\n"
+      << "model = " << quoted(name_of(scene_text::kModelNames, m.model)) << "\n"
+      << "density = " << number(m.density) << "\n"
+      << "youngs_modulus = " << number(m.youngs_modulus) << "\n"
+      << "poisson_ratio = " << number(m.poisson_ratio) << "\n\n";
+}
+
+void write_body(std::ostream& out, const BodySpec& body,
+                const std::vector<MaterialSpec>& materials) {
+  out << "[[body]]\n"
+      << "name = " << quoted(body.name) << "\n"
+      << "material = " << quoted(materials.at(body.material).name) << "\n"
+      << "type = \"polygon\"\n"
+      << "vertices = [";
+  for (std::size_t i = 0; i < body.polygon.size(); ++i)
+    out << (i ? ", " : "") << vec2(body.polygon[i]);
+  out << "]\n"
+      << "velocity = " << vec2(body.velocity) << "\n\n";
+}
+
+}  // namespace
+
+std::string to_toml(const Scene& scene) {
+  using scene_text::kBoundaryNames;
+  std::ostringstream out;
+  out << "# Resolved scene: every default filled in.\n"
+      << "[scene]\n"
+      << "name = " << quoted(scene.name) << "\n"
+      << "description = " << quoted(scene.description) << "\n\n";
+
+  const GridSpec& grid = scene.grid;
+  out << "[grid]\n"
+      << "cell_size = " << number(grid.cell_size) << "\n"
+      << "min = " << vec2(grid.min) << "\n"
+      << "max = " << vec2(grid.max) << "\n"
+      << "shape = " << quoted(name_of(scene_text::kShapeNames, grid.shape)) << "\n"
+      << "ppc = " << grid.ppc << "\n\n";
+
+  const BoundarySpec& b = scene.boundary;
+  out << "[boundary]\n"
+      << "left = " << quoted(name_of(kBoundaryNames, b.left)) << "\n"
+      << "right = " << quoted(name_of(kBoundaryNames, b.right)) << "\n"
+      << "bottom = " << quoted(name_of(kBoundaryNames, b.bottom)) << "\n"
+      << "top = " << quoted(name_of(kBoundaryNames, b.top)) << "\n\n";
+
+  out << "[time]\n"
+      << "end = " << number(scene.time.end) << "\n"
+      << "output_interval = " << number(scene.time.output_interval) << "\n"
+      << "courant = " << number(scene.time.courant) << "\n\n";
+
+  write_gravity(out, scene.gravity);
+
+  out << "\n[solver]\n"
+      << "flip = " << number(scene.solver.flip) << "\n"
+      << "mass_threshold = " << number(scene.solver.mass_threshold) << "\n"
+      << "damping = " << number(scene.solver.damping) << "\n\n";
+
+  for (const MaterialSpec& m : scene.materials) write_material(out, m);
+  for (const BodySpec& body : scene.bodies) write_body(out, body, scene.materials);
+
+  out << "[output]\n"
+      << "compress = " << (scene.output.compress ? "true" : "false") << "\n\n"
+      << "[run]\n"
+      << "overrides = [";
+  for (std::size_t i = 0; i < scene.overrides.size(); ++i)
+    out << (i ? ", " : "") << quoted(scene.overrides[i]);
+  out << "]\n";
+  return out.str();
+}
+
+}  // namespace runout

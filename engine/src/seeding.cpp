@@ -1,0 +1,75 @@
+#include "runout/seeding.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "runout/polygon.hpp"
+
+namespace runout {
+namespace {
+
+struct Seed {
+  Eigen::Vector2d position;
+  int body;
+};
+
+// Lattice indices i whose sub-cell centre origin + (i + 0.5) * spacing lies
+// in [lo, hi].
+struct IndexRange {
+  long first, last;
+};
+
+IndexRange lattice_span(double origin, double spacing, double lo, double hi) {
+  return {static_cast<long>(std::ceil((lo - origin) / spacing - 0.5)),
+          static_cast<long>(std::floor((hi - origin) / spacing - 0.5))};
+}
+
+void seed_body(const Scene& scene, int body_index, std::vector<Seed>& seeds) {
+  const Polygon& outline = scene.bodies[body_index].polygon;
+  const Eigen::Vector2d& origin = scene.grid.min;
+  const double spacing = scene.grid.cell_size / scene.grid.ppc;
+
+  Eigen::Vector2d lo = outline.front(), hi = outline.front();
+  for (const Eigen::Vector2d& v : outline) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const IndexRange rows = lattice_span(origin.y(), spacing, lo.y(), hi.y());
+  const IndexRange cols = lattice_span(origin.x(), spacing, lo.x(), hi.x());
+  for (long j = rows.first; j <= rows.last; ++j) {
+    for (long i = cols.first; i <= cols.last; ++i) {
+      const Eigen::Vector2d centre =
+          origin + spacing * Eigen::Vector2d(i + 0.5, j + 0.5);
+      if (contains(outline, centre)) seeds.push_back({centre, body_index});
+    }
+  }
+}
+
+}  // namespace
+
+Particles seed_particles(const Scene& scene) {
+  std::vector<Seed> seeds;
+  for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b)
+    seed_body(scene, b, seeds);
+
+  const double spacing = scene.grid.cell_size / scene.grid.ppc;
+  const double volume = spacing * spacing;
+  Particles particles;
+  particles.resize(static_cast<int>(seeds.size()));
+  for (int p = 0; p < particles.size(); ++p) {
+    const Seed& seed = seeds[p];
+    const BodySpec& body = scene.bodies[seed.body];
+    particles.x[p] = particles.x0[p] = seed.position.x();
+    particles.y[p] = particles.y0[p] = seed.position.y();
+    particles.vx[p] = body.velocity.x();
+    particles.vy[p] = body.velocity.y();
+    particles.vol0[p] = particles.vol[p] = volume;
+    particles.mass[p] = scene.materials[body.material].density * volume;
+    particles.body[p] = seed.body;
+    particles.material[p] = body.material;
+    particles.id[p] = p;
+  }
+  return particles;
+}
+
+}  // namespace runout

@@ -1,0 +1,201 @@
+#include "runout/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "runout/seeding.hpp"
+
+namespace runout {
+namespace {
+
+// Blocks of kBlock x kBlock cells, coloured 2 x 2. A particle in cell c
+// touches nodes c-1..c+2, so a block writes nodes within one cell around
+// itself plus two, and two same-colour blocks, kBlock cells apart, never
+// share a node as long as kBlock > 2.
+constexpr int kBlock = 4;
+
+// Loops shorter than this run on one thread: a parallel region costs a few
+// microseconds, more than small scenes (and the tests) spend in the loop.
+constexpr int kParallelMin = 4096;
+
+StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materials) {
+  const double h = s.grid.cell_size;
+  StepConfig c;
+  c.shape = s.grid.shape;
+  c.lp = h / (2.0 * s.grid.ppc);
+  c.gx = s.gravity.vector.x();
+  c.gy = s.gravity.vector.y();
+  c.flip = s.solver.flip;
+  double rho_max = 0;
+  for (const auto& m : materials) rho_max = std::max(rho_max, m.density);
+  c.min_node_mass = s.solver.mass_threshold * rho_max * h * h;
+  c.damping = s.solver.damping;
+  c.left = s.boundary.left;
+  c.right = s.boundary.right;
+  c.bottom = s.boundary.bottom;
+  c.top = s.boundary.top;
+  // The parser snaps max up to a node; the tolerance absorbs the rounding.
+  c.domain_nx = static_cast<int>(std::ceil((s.grid.max.x() - s.grid.min.x()) / h - 1e-9));
+  c.domain_ny = static_cast<int>(std::ceil((s.grid.max.y() - s.grid.min.y()) / h - 1e-9));
+  return c;
+}
+
+std::vector<MaterialParams> make_materials(const Scene& s) {
+  std::vector<MaterialParams> out;
+  for (const auto& m : s.materials)
+    out.push_back(elastic_params(m.density, m.youngs_modulus, m.poisson_ratio));
+  return out;
+}
+
+}  // namespace
+
+Simulation::Simulation(const Scene& scene) : Simulation(scene, seed_particles(scene)) {}
+
+Simulation::Simulation(const Scene& scene, Particles particles)
+    : particles_(std::move(particles)),
+      materials_(make_materials(scene)),
+      domain_min_(scene.grid.min),
+      domain_max_(scene.grid.max),
+      h_(scene.grid.cell_size),
+      courant_(scene.time.courant) {
+  config_ = make_config(scene, materials_);
+  const int n = particles_.size();
+  scratch_dx_.assign(n, 0.0);
+  scratch_dy_.assign(n, 0.0);
+  particle_block_.assign(n, 0);
+  stencils_.resize(n);
+  order_.assign(n, 0);
+  const ParticleView P = particles_.view();
+  double smax = 0;
+  for (int p = 0; p < n; ++p) smax = std::max(smax, cfl_speed(P, p, materials_[P.material[p]]));
+  max_signal_speed_ = smax;
+}
+
+void Simulation::fit_grid() {
+  const ParticleView P = particles_.view();
+  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
+  double xmax = -xmin, ymax = -xmin;
+#pragma omp parallel for reduction(min : xmin, ymin) reduction(max : xmax, ymax) if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) {
+    xmin = std::min(xmin, P.x[p]);
+    xmax = std::max(xmax, P.x[p]);
+    ymin = std::min(ymin, P.y[p]);
+    ymax = std::max(ymax, P.y[p]);
+  }
+  // GIMP lets a particle sit up to lp past a wall; a whole cell past it
+  // means it went through.
+  const Eigen::Vector2d lo = domain_min_.array() - h_, hi = domain_max_.array() + h_;
+  if (!(xmin >= lo.x() && ymin >= lo.y() && xmax <= hi.x() && ymax <= hi.y())) {
+    std::ostringstream msg;
+    msg << "particles left the grid domain at step " << steps_ << " (t = " << time_
+        << " s): they span x " << xmin << ".." << xmax << ", y " << ymin << ".." << ymax
+        << "; enlarge [grid] min/max if the slide really goes there";
+    throw NumericalFailure(msg.str());
+  }
+  const auto cell = [this](double v, double origin) {
+    return static_cast<int>(std::floor((v - origin) / h_));
+  };
+  // Cells c touch nodes c-1..c+2: one ghost node below, two above.
+  grid_.fit(cell(xmin, domain_min_.x()) - 1, cell(xmax, domain_min_.x()) + 2,
+            cell(ymin, domain_min_.y()) - 1, cell(ymax, domain_min_.y()) + 2,
+            domain_min_.x(), domain_min_.y(), h_);
+}
+
+void Simulation::bin_particles() {
+  const GridView& g = grid_.view();
+  const ParticleView P = particles_.view();
+  const int cells_x = g.nx - 1, cells_y = g.ny - 1;
+  blocks_x_ = (cells_x + kBlock - 1) / kBlock;
+  blocks_y_ = (cells_y + kBlock - 1) / kBlock;
+  const int blocks = blocks_x_ * blocks_y_;
+#pragma omp parallel for if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) {
+    const int ci = static_cast<int>(std::floor((P.x[p] - g.ox) / g.h));
+    const int cj = static_cast<int>(std::floor((P.y[p] - g.oy) / g.h));
+    particle_block_[p] = (cj / kBlock) * blocks_x_ + ci / kBlock;
+    make_stencil(g, config_, P.x[p], P.y[p], stencils_[p]);
+  }
+  // Stable counting sort: within a block particles keep their index order,
+  // which fixes the order of the sums at every node.
+  block_start_.assign(blocks + 1, 0);
+  for (int p = 0; p < P.n; ++p) ++block_start_[particle_block_[p] + 1];
+  for (int b = 0; b < blocks; ++b) block_start_[b + 1] += block_start_[b];
+  std::vector<int>& next = scratch_next_;
+  next.assign(block_start_.begin(), block_start_.end() - 1);
+  for (int p = 0; p < P.n; ++p) order_[next[particle_block_[p]]++] = p;
+}
+
+template <class Stage>
+void Simulation::scatter(Stage&& stage) {
+  const auto add = [](double* a, int n, double v) { a[n] += v; };
+  for (int colour = 0; colour < 4; ++colour) {
+    const int cx = colour & 1, cy = colour >> 1;
+    const int nbx = (blocks_x_ - cx + 1) / 2, nby = (blocks_y_ - cy + 1) / 2;
+#pragma omp parallel for schedule(dynamic, 1) if (order_.size() > kParallelMin)
+    for (int k = 0; k < nbx * nby; ++k) {
+      const int b = (cy + 2 * (k / nbx)) * blocks_x_ + cx + 2 * (k % nbx);
+      for (int q = block_start_[b]; q < block_start_[b + 1]; ++q) stage(order_[q], add);
+    }
+  }
+}
+
+void Simulation::step(double dt) {
+  fit_grid();
+  bin_particles();
+  const GridView g = grid_.view();
+  const ParticleView P = particles_.view();
+  const StepConfig& c = config_;
+  const StepScratch s{scratch_dx_.data(), scratch_dy_.data()};
+  const int nodes = g.size();
+
+  const Stencil2D* st = stencils_.data();
+  scatter([&](int p, auto add) { p2g(P, p, st[p], g, c, add); });
+#pragma omp parallel for if (nodes > kParallelMin)
+  for (int n = 0; n < nodes; ++n) grid_update(g, n, c, dt);
+#pragma omp parallel for if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) g2p(P, p, st[p], g, c, dt, s);
+
+  std::fill_n(g.px, nodes, 0.0);
+  std::fill_n(g.py, nodes, 0.0);
+  scatter([&](int p, auto add) { p2g_momentum(P, p, st[p], g, add); });
+#pragma omp parallel for if (nodes > kParallelMin)
+  for (int n = 0; n < nodes; ++n) remap_velocity(g, n, c);
+
+  double smax = 0;
+  int bad = 0;
+  const MaterialParams* mats = materials_.data();
+#pragma omp parallel for reduction(max : smax) reduction(+ : bad) if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) {
+    const double sp = stress_update(P, p, st[p], g, mats, dt, s);
+    if (std::isfinite(sp)) {
+      smax = std::max(smax, sp);
+    } else {
+      ++bad;
+    }
+  }
+  if (bad > 0) {
+    std::ostringstream msg;
+    msg << "numerical blow-up at step " << steps_ << " (t = " << time_ << " s, dt = " << dt
+        << " s): " << bad << " particle(s) with non-finite stress, volume or velocity";
+    throw NumericalFailure(msg.str());
+  }
+  max_signal_speed_ = smax;
+  time_ += dt;
+  last_dt_ = dt;
+  ++steps_;
+}
+
+void Simulation::advance_to(double t) {
+  // Equal steps no longer than the CFL limit, so the last one is not a
+  // sliver; the final step lands on t exactly.
+  while (time_ < t) {
+    const double remaining = t - time_;
+    const double n = std::ceil(remaining / stable_dt());
+    step(remaining / n);
+    if (n <= 1.0) time_ = t;
+  }
+}
+
+}  // namespace runout

@@ -1,0 +1,137 @@
+// The runout command line, end to end: exit codes of each error class, no
+// output folder left behind by a bad scene, and a small run's outputs.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr
+};
+
+Result run_cli(const std::string& args) {
+  const char* cli = std::getenv("RUNOUT_CLI");
+  EXPECT_NE(cli, nullptr) << "RUNOUT_CLI is set by ctest";
+  const std::string cmd = std::string(cli) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, pipe)) out += buf;
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("runout_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  fs::path dir_;
+};
+
+const char* kSmallScene = R"(
+[scene]
+name = "small"
+[grid]
+cell_size = 0.5
+min = [0.0, 0.0]
+max = [20.0, 5.0]
+[boundary]
+bottom = "slip"
+[time]
+end = 0.2
+output_interval = 0.1
+[gravity]
+slope_angle = 10.0
+[[material]]
+name = "clay"
+density = 600.0
+youngs_modulus = 1.0e5
+poisson_ratio = 0.3
+[[body]]
+name = "block"
+material = "clay"
+type = "rectangle"
+min = [1.0, 0.0]
+max = [5.0, 2.0]
+)";
+
+}  // namespace
+
+TEST_F(Cli, VersionAndHelp) {
+  EXPECT_EQ(run_cli("--version").code, 0);
+  const Result help = run_cli("--help");
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.output.find("run"), std::string::npos);
+  EXPECT_NE(help.output.find("check"), std::string::npos);
+}
+
+TEST_F(Cli, UsageErrorIs64) {
+  EXPECT_EQ(run_cli("run --no-such-flag").code, 64);
+  EXPECT_EQ(run_cli("").code, 64);
+}
+
+TEST_F(Cli, MissingSceneFileIs66) {
+  const Result r = run_cli("check " + (dir_ / "nope.toml").string());
+  EXPECT_EQ(r.code, 66);
+  EXPECT_NE(r.output.find("nope.toml"), std::string::npos);
+}
+
+TEST_F(Cli, InvalidSceneIs65AndLeavesNoOutput) {
+  std::string bad = kSmallScene;
+  bad.replace(bad.find("cell_size = 0.5"), 15, "cell_size = -0.5");
+  const std::string scene = write("bad.toml", bad);
+  const fs::path out = dir_ / "out";
+  const Result r = run_cli("run " + scene + " --out " + out.string());
+  EXPECT_EQ(r.code, 65);
+  EXPECT_NE(r.output.find("grid.cell_size"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(":5:"), std::string::npos) << r.output;  // the line of the key
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, CheckPrintsTheResolvedSceneAndSizes) {
+  const Result r = run_cli("check " + write("small.toml", kSmallScene) + " --cell 0.25 --ppc 1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("# particles:        128"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("grid.cell_size = 0.25"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("initial dt"), std::string::npos);
+}
+
+TEST_F(Cli, RunWritesFramesIndexHistoryAndResolvedScene) {
+  const fs::path out = dir_ / "out";
+  const Result r = run_cli("run " + write("small.toml", kSmallScene) + " --out " + out.string() +
+                           " --threads 2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "frame_00000.vtu"));
+  EXPECT_TRUE(fs::exists(out / "frame_00002.vtu"));
+  EXPECT_FALSE(fs::exists(out / "frame_00003.vtu"));
+  EXPECT_TRUE(fs::exists(out / "small.pvd"));
+  EXPECT_TRUE(fs::exists(out / "scene.resolved.toml"));
+  std::ifstream history(out / "history.csv");
+  std::string line;
+  int rows = 0;
+  while (std::getline(history, line)) ++rows;
+  EXPECT_EQ(rows, 1 + 21);  // header, t = 0 and 20 rows
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left";
+}

@@ -1,0 +1,439 @@
+// Scene files: the default scene, every class of error (with the key and the
+// line it is reported at), the resolved-scene round trip, the polygon
+// helpers and particle seeding.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numeric>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "runout/polygon.hpp"
+#include "runout/scene_parser.hpp"
+#include "runout/seeding.hpp"
+
+namespace runout {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Scene default_scene() {
+  return parse_scene(default_scene_toml(), "default.toml");
+}
+
+// Every key sits on a known line, so error cases can replace a line and
+// name the line the error must point at.
+const char* const kMinimal =
+    "[scene]\n"                      //  1
+    "name = \"mini\"\n"              //  2
+    "\n"                             //  3
+    "[grid]\n"                       //  4
+    "cell_size = 0.5\n"              //  5
+    "min = [0.0, 0.0]\n"             //  6
+    "max = [10.0, 5.0]\n"            //  7
+    "ppc = 2\n"                      //  8
+    "\n"                             //  9
+    "[time]\n"                       // 10
+    "end = 1.0\n"                    // 11
+    "output_interval = 0.1\n"        // 12
+    "\n"                             // 13
+    "[[material]]\n"                 // 14
+    "name = \"clay\"\n"              // 15
+    "density = 600.0\n"              // 16
+    "youngs_modulus = 1.0e5\n"       // 17
+    "poisson_ratio = 0.3\n"          // 18
+    "\n"                             // 19
+    "[[body]]\n"                     // 20
+    "name = \"block\"\n"             // 21
+    "material = \"clay\"\n"          // 22
+    "type = \"rectangle\"\n"         // 23
+    "min = [1.0, 0.0]\n"             // 24
+    "max = [3.0, 2.0]\n";            // 25
+
+// kMinimal with lines first..last (1-based) replaced by `text`.
+std::string replace_lines(int first, int last, const std::string& text) {
+  std::istringstream in(kMinimal);
+  std::string out, line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (n < first || n > last)
+      out += line + "\n";
+    else if (n == first)
+      out += text + "\n";
+  }
+  return out;
+}
+
+TEST(SceneParser, DefaultSceneParses) {
+  const Scene s = default_scene();
+  EXPECT_EQ(s.name, "default");
+  EXPECT_DOUBLE_EQ(s.grid.cell_size, 0.25);
+  EXPECT_EQ(s.grid.min, Eigen::Vector2d(-2.0, 0.0));
+  EXPECT_EQ(s.grid.max, Eigen::Vector2d(400.0, 10.0));
+  EXPECT_EQ(s.grid.shape, ShapeKind::Gimp);
+  EXPECT_EQ(s.grid.ppc, 2);
+  EXPECT_EQ(s.boundary.bottom, BoundaryKind::Slip);
+  EXPECT_EQ(s.boundary.top, BoundaryKind::Free);
+  EXPECT_DOUBLE_EQ(s.time.end, 20.0);
+  EXPECT_DOUBLE_EQ(s.time.output_interval, 0.5);
+  EXPECT_DOUBLE_EQ(s.gravity.slope_angle_deg, 5.0);
+  const double theta = 5.0 * kPi / 180.0;
+  EXPECT_NEAR(s.gravity.vector.x(), 9.81 * std::sin(theta), 1e-12);
+  EXPECT_NEAR(s.gravity.vector.y(), -9.81 * std::cos(theta), 1e-12);
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].name, "clay");
+  EXPECT_DOUBLE_EQ(s.materials[0].density, 600.0);
+  EXPECT_DOUBLE_EQ(s.materials[0].youngs_modulus, 250.0e3);
+  EXPECT_DOUBLE_EQ(s.materials[0].poisson_ratio, 0.49);
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_EQ(s.bodies[0].material, 0);
+  ASSERT_EQ(s.bodies[0].polygon.size(), 4u);
+  // 48.66 m base, 5 m high, 30-degree faces: top 31.34 m, area 200 m2 (to
+  // the 4 digits SCENES.md gives).
+  EXPECT_NEAR(signed_area(s.bodies[0].polygon), 200.0, 0.01);
+  EXPECT_TRUE(s.output.compress);
+  EXPECT_TRUE(s.overrides.empty());
+}
+
+TEST(SceneParser, OptionalTablesTakeDefaults) {
+  const Scene s = parse_scene(kMinimal, "mini.toml");
+  const Scene defaults;
+  EXPECT_EQ(s.boundary.left, BoundaryKind::Slip);
+  EXPECT_EQ(s.boundary.right, BoundaryKind::Slip);
+  EXPECT_EQ(s.boundary.bottom, BoundaryKind::Fixed);
+  EXPECT_EQ(s.boundary.top, BoundaryKind::Free);
+  EXPECT_EQ(s.gravity.vector, Eigen::Vector2d(0.0, -9.81));
+  EXPECT_EQ(s.gravity.slope_angle_deg, 0.0);
+  EXPECT_EQ(s.solver.flip, defaults.solver.flip);
+  EXPECT_EQ(s.solver.mass_threshold, defaults.solver.mass_threshold);
+  EXPECT_EQ(s.solver.damping, defaults.solver.damping);
+  EXPECT_EQ(s.time.courant, 0.3);
+  EXPECT_EQ(s.grid.shape, ShapeKind::Gimp);
+  EXPECT_EQ(s.materials[0].model, MaterialModel::Elastic);
+  EXPECT_EQ(s.bodies[0].velocity, Eigen::Vector2d::Zero());
+  EXPECT_TRUE(s.output.compress);
+  EXPECT_EQ(s.description, "");
+}
+
+TEST(SceneParser, ClockwiseOutlineIsStoredCounterClockwise) {
+  const Scene s = parse_scene(
+      replace_lines(23, 25, "type = \"polygon\"\n"
+                            "vertices = [[1.0, 1.0], [1.0, 3.0], [3.0, 3.0], [3.0, 1.0]]"),
+      "cw.toml");
+  EXPECT_DOUBLE_EQ(signed_area(s.bodies[0].polygon), 4.0);
+}
+
+TEST(SceneParser, GridMaxIsSnappedUpToANode) {
+  const Scene s = parse_scene(replace_lines(7, 7, "max = [9.8, 4.6]"), "snap.toml");
+  EXPECT_DOUBLE_EQ(s.grid.max.x(), 10.0);
+  EXPECT_DOUBLE_EQ(s.grid.max.y(), 5.0);
+}
+
+TEST(SceneParser, GravityVectorAndIntegerForFloat) {
+  const Scene s = parse_scene(replace_lines(13, 13, "[gravity]\nvector = [1, -9]\n"),
+                              "g.toml");
+  EXPECT_EQ(s.gravity.vector, Eigen::Vector2d(1.0, -9.0));
+  EXPECT_EQ(s.gravity.slope_angle_deg, 0.0);
+}
+
+// A scene that is wrong in one way, and what the error must say.
+struct ErrorCase {
+  const char* name;
+  int first_line, last_line;  // replaced lines of kMinimal
+  const char* replacement;
+  int line;                   // where the error must point
+  const char* key;
+  const char* what;           // part of the message after the key
+};
+
+std::ostream& operator<<(std::ostream& os, const ErrorCase& c) { return os << c.name; }
+
+class SceneErrors : public ::testing::TestWithParam<ErrorCase> {};
+
+TEST_P(SceneErrors, NameKeyAndLine) {
+  const ErrorCase& c = GetParam();
+  const std::string text = replace_lines(c.first_line, c.last_line, c.replacement);
+  try {
+    parse_scene(text, "bad.toml");
+    FAIL() << "no error for:\n" << text;
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    const std::string where = "bad.toml:" + std::to_string(c.line) + ": " + c.key + ": ";
+    EXPECT_EQ(message.rfind(where, 0), 0u) << message;
+    EXPECT_NE(message.find(c.what), std::string::npos) << message;
+    EXPECT_EQ(e.line(), c.line) << message;
+  }
+}
+
+const char* const kSelfIntersecting =
+    "type = \"polygon\"\n"
+    "vertices = [[1.0, 1.0], [3.0, 3.0], [3.0, 1.0], [1.0, 3.0]]";
+const char* const kFlatTrapezoid =
+    "type = \"trapezoid\"\n"
+    "base_start = [1.0, 0.0]\n"
+    "base_length = 2.0\n"
+    "height = 2.0\n"
+    "rear_angle = 30.0\n"
+    "front_angle = 30.0";
+const char* const kSecondClay =
+    "[[material]]\n"
+    "name = \"clay\"\n"
+    "density = 1.0\n"
+    "youngs_modulus = 1.0\n"
+    "poisson_ratio = 0.2\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    SceneParser, SceneErrors,
+    ::testing::Values(
+        ErrorCase{"Syntax", 5, 5, "cell_size = = 0.5", 5, "syntax error", ""},
+        ErrorCase{"UnknownTopLevelTable", 13, 13, "[gird]\nx = 1\n", 13, "gird", "unknown key"},
+        ErrorCase{"UnknownTopLevelKey", 1, 1, "verbose = true\n[scene]", 1, "verbose", "unknown key"},
+        ErrorCase{"UnknownNestedKey", 5, 5, "cellsize = 0.5", 5, "grid.cellsize", "unknown key"},
+        ErrorCase{"UnknownBodyKey", 25, 25, "colour = \"red\"", 25, "body[0].colour", "unknown key"},
+        ErrorCase{"KeyOfAnotherBodyType", 25, 25, "max = [3.0, 2.0]\nheight = 1.0", 26,
+                  "body[0].height", "unknown key"},
+        ErrorCase{"StringForNumber", 16, 16, "density = \"heavy\"", 16, "material[0].density",
+                  "expected a number, got string"},
+        ErrorCase{"FloatForInteger", 8, 8, "ppc = 2.5", 8, "grid.ppc",
+                  "expected an integer, got float"},
+        ErrorCase{"NotAPoint", 6, 6, "min = [0.0, 0.0, 1.0]", 6, "grid.min",
+                  "expected an array of 2 numbers"},
+        ErrorCase{"SingleMaterialTable", 14, 14, "[material]", 14, "material",
+                  "expected an array of tables ([[material]]), got table"},
+        ErrorCase{"MissingKey", 5, 5, "", 4, "grid.cell_size", "missing required key"},
+        ErrorCase{"MissingTable", 10, 12, "", 1, "time", "missing required key"},
+        ErrorCase{"NonPositiveCellSize", 5, 5, "cell_size = -0.1", 5, "grid.cell_size",
+                  "must be > 0 (got -0.1)"},
+        ErrorCase{"NotFinite", 5, 5, "cell_size = inf", 5, "grid.cell_size",
+                  "must be a finite number"},
+        ErrorCase{"PpcBelowOne", 8, 8, "ppc = 0", 8, "grid.ppc", "must be in [1, 16] (got 0)"},
+        ErrorCase{"PpcAbove16", 8, 8, "ppc = 17", 8, "grid.ppc", "must be in [1, 16] (got 17)"},
+        ErrorCase{"NonPositiveDensity", 16, 16, "density = 0", 16, "material[0].density",
+                  "must be > 0 (got 0)"},
+        ErrorCase{"IncompressiblePoisson", 18, 18, "poisson_ratio = 0.5", 18,
+                  "material[0].poisson_ratio", "must be in (-1, 0.5) (got 0.5)"},
+        ErrorCase{"GridMaxNotAboveMin", 7, 7, "max = [10.0, 0.0]", 7, "grid.max",
+                  "must be greater than grid.min"},
+        ErrorCase{"OutputAfterEnd", 12, 12, "output_interval = 2.0", 12,
+                  "time.output_interval", "must be <= time.end"},
+        ErrorCase{"CourantZero", 12, 12, "output_interval = 0.1\ncourant = 0", 13, "time.courant",
+                  "must be in (0, 1]"},
+        ErrorCase{"UnknownBoundaryKind", 13, 13, "[boundary]\nleft = \"open\"\n", 14,
+                  "boundary.left", "must be one of \"free\", \"slip\", \"fixed\""},
+        ErrorCase{"UnknownBodyType", 23, 23, "type = \"circle\"", 23, "body[0].type",
+                  "must be one of \"rectangle\", \"trapezoid\", \"polygon\""},
+        ErrorCase{"SelfIntersectingPolygon", 23, 25, kSelfIntersecting, 23, "body[0].polygon",
+                  "self-intersecting polygon"},
+        ErrorCase{"TooFewVertices", 23, 25, "type = \"polygon\"\nvertices = [[1, 1], [2, 2]]", 24,
+                  "body[0].vertices", "at least 3 vertices"},
+        ErrorCase{"PolygonOutsideGrid", 25, 25, "max = [3.0, 6.0]", 23, "body[0].polygon",
+                  "outside the grid"},
+        ErrorCase{"UnknownMaterial", 22, 22, "material = \"sand\"", 22, "body[0].material",
+                  "unknown material \"sand\""},
+        ErrorCase{"DuplicateMaterial", 19, 19, kSecondClay, 20, "material[1].name",
+                  "duplicate material name \"clay\""},
+        ErrorCase{"SlopeAndVector", 13, 13, "[gravity]\nslope_angle = 5.0\nvector = [0.0, -9.81]\n",
+                  14, "gravity.slope_angle", "cannot be combined with gravity.vector"},
+        ErrorCase{"SlopeAngleVertical", 13, 13, "[gravity]\nslope_angle = 90\n", 14,
+                  "gravity.slope_angle", "must be in (-90, 90)"},
+        ErrorCase{"TrapezoidWithoutTop", 23, 25, kFlatTrapezoid, 25, "body[0].base_length",
+                  "must be > 0"},
+        ErrorCase{"NoBodies", 20, 25, "", 1, "body", "missing required key"}),
+    [](const ::testing::TestParamInfo<ErrorCase>& info) { return std::string(info.param.name); });
+
+TEST(SceneParser, MissingFileHasNoLine) {
+  const std::string path = "/nonexistent/runout/scene.toml";
+  try {
+    load_scene_file(path);
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 0);
+    EXPECT_EQ(std::string(e.what()), "cannot open scene file '" + path + "'");
+  }
+}
+
+TEST(SceneParser, LoadedFileIsNamedInMessages) {
+  const std::string path = ::testing::TempDir() + "runout_bad_scene.toml";
+  std::ofstream(path) << replace_lines(5, 5, "cell_size = 0");
+  try {
+    load_scene_file(path);
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ":5: grid.cell_size: ", 0), 0u) << e.what();
+  }
+  std::remove(path.c_str());
+}
+
+// Exact equality on purpose: the resolved scene must reproduce every bit.
+void expect_same_scene(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.description, b.description);
+  EXPECT_EQ(a.grid.cell_size, b.grid.cell_size);
+  EXPECT_EQ(a.grid.min, b.grid.min);
+  EXPECT_EQ(a.grid.max, b.grid.max);
+  EXPECT_EQ(a.grid.shape, b.grid.shape);
+  EXPECT_EQ(a.grid.ppc, b.grid.ppc);
+  EXPECT_EQ(a.boundary.left, b.boundary.left);
+  EXPECT_EQ(a.boundary.right, b.boundary.right);
+  EXPECT_EQ(a.boundary.bottom, b.boundary.bottom);
+  EXPECT_EQ(a.boundary.top, b.boundary.top);
+  EXPECT_EQ(a.time.end, b.time.end);
+  EXPECT_EQ(a.time.output_interval, b.time.output_interval);
+  EXPECT_EQ(a.time.courant, b.time.courant);
+  EXPECT_EQ(a.gravity.vector, b.gravity.vector);
+  EXPECT_EQ(a.gravity.slope_angle_deg, b.gravity.slope_angle_deg);
+  EXPECT_EQ(a.solver.flip, b.solver.flip);
+  EXPECT_EQ(a.solver.mass_threshold, b.solver.mass_threshold);
+  EXPECT_EQ(a.solver.damping, b.solver.damping);
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  for (std::size_t i = 0; i < a.materials.size(); ++i) {
+    EXPECT_EQ(a.materials[i].name, b.materials[i].name);
+    EXPECT_EQ(a.materials[i].model, b.materials[i].model);
+    EXPECT_EQ(a.materials[i].density, b.materials[i].density);
+    EXPECT_EQ(a.materials[i].youngs_modulus, b.materials[i].youngs_modulus);
+    EXPECT_EQ(a.materials[i].poisson_ratio, b.materials[i].poisson_ratio);
+  }
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    EXPECT_EQ(a.bodies[i].name, b.bodies[i].name);
+    EXPECT_EQ(a.bodies[i].material, b.bodies[i].material);
+    EXPECT_EQ(a.bodies[i].polygon, b.bodies[i].polygon);
+    EXPECT_EQ(a.bodies[i].velocity, b.bodies[i].velocity);
+  }
+  EXPECT_EQ(a.output.compress, b.output.compress);
+  EXPECT_EQ(a.overrides, b.overrides);
+}
+
+TEST(SceneWriter, DefaultSceneRoundTrips) {
+  const Scene original = default_scene();
+  expect_same_scene(parse_scene(to_toml(original), "resolved.toml"), original);
+}
+
+TEST(SceneWriter, EveryNonDefaultValueRoundTrips) {
+  Scene s = parse_scene(
+      "[scene]\nname = \"odd \\\"one\\\"\"\ndescription = \"tab\\there\\nnewline\"\n"
+      "[grid]\ncell_size = 0.1\nmin = [-1.3, 0.7]\nmax = [7.77, 3.33]\n"
+      "shape = \"linear\"\nppc = 3\n"
+      "[boundary]\nleft = \"free\"\nright = \"fixed\"\nbottom = \"slip\"\ntop = \"fixed\"\n"
+      "[time]\nend = 3\noutput_interval = 0.1\ncourant = 0.7\n"
+      "[gravity]\nmagnitude = 9.80665\nslope_angle = -13.75\n"
+      "[solver]\nflip = 0.5\nmass_threshold = 1e-7\ndamping = 0.1\n"
+      "[[material]]\nname = \"a\"\ndensity = 525\nyoungs_modulus = 1.5e6\npoisson_ratio = -0.2\n"
+      "[[material]]\nname = \"b\"\ndensity = 2000.5\nyoungs_modulus = 3e7\npoisson_ratio = 0.1\n"
+      "[[body]]\nname = \"t\"\nmaterial = \"b\"\ntype = \"trapezoid\"\n"
+      "base_start = [0.1, 0.8]\nbase_length = 5.3\nheight = 1.1\n"
+      "rear_angle = 100.0\nfront_angle = 33.3\nvelocity = [0.25, -1e-3]\n"
+      "[[body]]\nname = \"p\"\nmaterial = \"a\"\ntype = \"polygon\"\n"
+      "vertices = [[6, 1], [7, 1], [6.5, 2.9]]\n"
+      "[output]\ncompress = false\n",
+      "odd.toml");
+  apply_overrides(s, 0.13, 4);
+  expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
+}
+
+TEST(SceneWriter, OverridesAreRecordedAndChecked) {
+  Scene s = default_scene();
+  apply_overrides(s, 0.4, 3);
+  EXPECT_EQ(s.grid.cell_size, 0.4);
+  EXPECT_EQ(s.grid.ppc, 3);
+  EXPECT_EQ(s.overrides, (std::vector<std::string>{"grid.cell_size = 0.4", "grid.ppc = 3"}));
+  // The old max need not lie on a node of the new grid, so it must have moved to one.
+  const double cells = (s.grid.max.x() - s.grid.min.x()) / s.grid.cell_size;
+  EXPECT_NEAR(cells, std::round(cells), 1e-9);
+
+  struct Bad {
+    std::optional<double> cell;
+    std::optional<int> ppc;
+    std::string flag;
+  };
+  for (const Bad& bad : {Bad{0.0, {}, "--cell"}, Bad{-1.0, {}, "--cell"},
+                         Bad{{}, 0, "--ppc"}, Bad{{}, 17, "--ppc"}}) {
+    try {
+      apply_overrides(s, bad.cell, bad.ppc);
+      FAIL() << "no error for " << bad.flag;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.line(), 0);
+      EXPECT_EQ(std::string(e.what()).rfind(bad.flag + ": must be", 0), 0u) << e.what();
+    }
+  }
+}
+
+const Polygon kUnitSquare = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+
+TEST(Polygon, SignedAreaFollowsOrientation) {
+  EXPECT_DOUBLE_EQ(signed_area(kUnitSquare), 1.0);
+  EXPECT_DOUBLE_EQ(signed_area(Polygon(kUnitSquare.rbegin(), kUnitSquare.rend())), -1.0);
+  EXPECT_DOUBLE_EQ(signed_area({{0, 0}, {4, 0}, {0, 3}}), 6.0);
+}
+
+TEST(Polygon, SimpleAndSelfIntersecting) {
+  EXPECT_TRUE(is_simple(kUnitSquare));
+  EXPECT_TRUE(is_simple({{0, 0}, {2, 0}, {2, 2}, {1, 1}, {0, 2}}));  // concave
+  EXPECT_FALSE(is_simple({{0, 0}, {1, 1}, {1, 0}, {0, 1}}));         // bow-tie
+  EXPECT_FALSE(is_simple({{0, 0}, {1, 0}, {1, 0}, {0, 1}}));         // repeated vertex
+  EXPECT_FALSE(is_simple({{0, 0}, {2, 0}, {1, 0}}));                 // folds back
+  EXPECT_FALSE(is_simple({{0, 0}, {1, 0}}));
+}
+
+TEST(Polygon, Contains) {
+  EXPECT_TRUE(contains(kUnitSquare, {0.5, 0.5}));
+  EXPECT_FALSE(contains(kUnitSquare, {1.5, 0.5}));
+  EXPECT_FALSE(contains(kUnitSquare, {0.5, -0.1}));
+  const Polygon notch = {{0, 0}, {2, 0}, {2, 2}, {1, 1}, {0, 2}};
+  EXPECT_TRUE(contains(notch, {0.5, 1.2}));
+  EXPECT_FALSE(contains(notch, {1.0, 1.5}));
+}
+
+TEST(Seeding, AlignedRectangleFillsWholeCells) {
+  for (const int ppc : {1, 2, 4}) {
+    Scene s = parse_scene(kMinimal, "mini.toml");  // 2 m x 2 m block, h = 0.5
+    s.grid.ppc = ppc;
+    s.bodies[0].velocity = {0.5, -0.25};
+    const Particles p = seed_particles(s);
+    ASSERT_EQ(p.size(), 16 * ppc * ppc);
+    const double total_mass = std::accumulate(p.mass.begin(), p.mass.end(), 0.0);
+    EXPECT_NEAR(total_mass / (600.0 * 4.0), 1.0, 1e-12);
+    for (int i = 0; i < p.size(); ++i) {
+      EXPECT_TRUE(p.x[i] > 1.0 && p.x[i] < 3.0 && p.y[i] > 0.0 && p.y[i] < 2.0);
+      EXPECT_EQ(p.id[i], i);
+      EXPECT_EQ(p.x0[i], p.x[i]);
+      EXPECT_EQ(p.vx[i], 0.5);
+      EXPECT_EQ(p.vy[i], -0.25);
+      EXPECT_EQ(p.vol0[i], 0.25 / (ppc * ppc));
+      EXPECT_EQ(p.vol[i], p.vol0[i]);
+    }
+  }
+}
+
+TEST(Seeding, TrapezoidVolumeWithinOneCellRow) {
+  const Scene s = default_scene();
+  const Particles p = seed_particles(s);
+  const double volume = std::accumulate(p.vol0.begin(), p.vol0.end(), 0.0);
+  const double exact = signed_area(s.bodies[0].polygon);
+  EXPECT_LT(std::abs(volume - exact), 48.66 * s.grid.cell_size);
+  for (int i = 0; i < p.size(); ++i) {
+    ASSERT_TRUE(contains(s.bodies[0].polygon, {p.x[i], p.y[i]}));
+    ASSERT_EQ(p.id[i], i);
+    ASSERT_EQ(p.body[i], 0);
+    ASSERT_EQ(p.material[i], 0);
+  }
+}
+
+TEST(Seeding, IdsRunThroughEveryBody) {
+  const Scene s = parse_scene(
+      replace_lines(25, 25, "max = [3.0, 2.0]\n\n[[body]]\nname = \"second\"\nmaterial = \"clay\"\n"
+                            "type = \"rectangle\"\nmin = [5.0, 0.0]\nmax = [6.0, 1.0]"),
+      "two.toml");
+  const Particles p = seed_particles(s);
+  ASSERT_EQ(p.size(), 16 * 4 + 4 * 4);
+  for (int i = 0; i < p.size(); ++i) {
+    EXPECT_EQ(p.id[i], i);
+    EXPECT_EQ(p.body[i], i < 64 ? 0 : 1);
+  }
+}
+
+}  // namespace
+}  // namespace runout

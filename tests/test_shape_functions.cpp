@@ -1,0 +1,90 @@
+// Partition of unity and zero gradient sum of the GIMP and linear shape
+// functions, with particles on nodes, on cell edges, at cell centres and in
+// between, on a grid whose origin is not zero.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "runout/shape.hpp"
+
+using namespace runout;
+
+namespace {
+
+struct Case {
+  ShapeKind kind;
+  double lp_fraction;  // lp / h
+};
+
+void expect_partition(ShapeKind kind, double xp, double origin, double h, double lp) {
+  Stencil1D s;
+  stencil_1d(kind, xp, origin, h, lp, s);
+  double sum = 0, dsum = 0, moment = 0;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GE(s.w[k], 0.0);
+    sum += s.w[k];
+    dsum += s.dw[k];
+    moment += s.dw[k] * (origin + (s.first + k) * h);
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-14) << "xp = " << xp;
+  EXPECT_NEAR(dsum, 0.0, 1e-12 / h) << "xp = " << xp;
+  // Linear completeness: sum dN_i x_i = 1 (the gradient of x is 1).
+  EXPECT_NEAR(moment, 1.0, 1e-9) << "xp = " << xp;
+}
+
+}  // namespace
+
+TEST(ShapeFunctions, PartitionOfUnityEverywhere) {
+  const double h = 0.37, origin = -12.345;
+  for (Case c : {Case{ShapeKind::Gimp, 0.25}, Case{ShapeKind::Gimp, 0.5},
+                 Case{ShapeKind::Gimp, 0.125}, Case{ShapeKind::Linear, 0.25}}) {
+    const double lp = c.lp_fraction * h;
+    for (int node = -3; node <= 3; ++node) {
+      const double xn = origin + node * h;
+      for (double f : {0.0, 1e-13, 0.1, 0.25, 0.5 - 1e-12, 0.5, 0.5 + 1e-12, 0.75, 0.999})
+        expect_partition(c.kind, xn + f * h, origin, h, lp);
+    }
+  }
+}
+
+TEST(ShapeFunctions, GimpMatchesClosedFormOnNodeAndEdge) {
+  // Particle on a node: centre weight 1 - lp/(2h), neighbours lp/(4h).
+  const double h = 1.0, lp = 0.25;
+  Stencil1D s;
+  stencil_1d(ShapeKind::Gimp, 3.0, 0.0, h, lp, s);
+  EXPECT_EQ(s.first, 2);
+  EXPECT_NEAR(s.w[1], 1.0 - lp / (2.0 * h), 1e-15);
+  EXPECT_NEAR(s.w[0], lp / (4.0 * h), 1e-15);
+  EXPECT_NEAR(s.w[2], lp / (4.0 * h), 1e-15);
+  EXPECT_NEAR(s.dw[1], 0.0, 1e-15);
+  // Particle at a cell centre, in the linear zone of both cell nodes.
+  stencil_1d(ShapeKind::Gimp, 3.5, 0.0, h, lp, s);
+  EXPECT_NEAR(s.w[0] + s.w[1] + s.w[2], 1.0, 1e-15);
+  double w3 = 0, w4 = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (s.first + k == 3) w3 = s.w[k];
+    if (s.first + k == 4) w4 = s.w[k];
+  }
+  EXPECT_NEAR(w3, 0.5, 1e-15);
+  EXPECT_NEAR(w4, 0.5, 1e-15);
+}
+
+TEST(ShapeFunctions, GimpIsContinuousAcrossZoneBoundaries) {
+  const double h = 1.0, lp = 0.25, eps = 1e-9;
+  for (double r : {lp, h - lp, h + lp}) {
+    double a, da, b, db;
+    gimp_1d(r - eps, h, lp, a, da);
+    gimp_1d(r + eps, h, lp, b, db);
+    EXPECT_NEAR(a, b, 1e-8) << "r = " << r;
+    EXPECT_NEAR(da, db, 1e-7) << "r = " << r;
+  }
+}
+
+TEST(ShapeFunctions, LinearUsesTheCellsConstantGradient) {
+  Stencil1D s;
+  stencil_1d(ShapeKind::Linear, 2.0, 0.0, 0.5, 0.125, s);  // on node 4
+  EXPECT_EQ(s.first, 4);
+  EXPECT_DOUBLE_EQ(s.w[0], 1.0);
+  EXPECT_DOUBLE_EQ(s.dw[0], -2.0);
+  EXPECT_DOUBLE_EQ(s.dw[1], 2.0);
+}
