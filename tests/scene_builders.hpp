@@ -1,6 +1,7 @@
 #pragma once
 // Scenes built in code for the physics tests, so that they do not depend on
 // the scene parser.
+#include "runout/particles.hpp"
 #include "runout/scene.hpp"
 
 namespace runout::fixtures {
@@ -28,6 +29,18 @@ inline Scene block_scene(Eigen::Vector2d body_min, Eigen::Vector2d body_max,
                {body_max.x(), body_max.y()}, {body_min.x(), body_max.y()}};
   s.bodies.push_back(b);
   return s;
+}
+
+// Geostatic stress of a layer whose top is at y = top under the gravity
+// component g_normal into the base (sigma_yy = -rho g_n (top - y),
+// sigma_xx = sigma_zz = K0 sigma_yy), so that a test starts in equilibrium
+// instead of ringing from a sudden load.
+inline void set_geostatic(Particles& P, double rho, double g_normal, double top, double K0) {
+  for (int p = 0; p < P.size(); ++p) {
+    P.syy[p] = -rho * g_normal * (top - P.y[p]);
+    P.sxx[p] = P.szz[p] = K0 * P.syy[p];
+    P.sxy[p] = 0.0;
+  }
 }
 
 }  // namespace runout::fixtures

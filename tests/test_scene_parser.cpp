@@ -139,11 +139,94 @@ TEST(SceneParser, GravityVectorAndIntegerForFloat) {
   EXPECT_EQ(s.gravity.slope_angle_deg, 0.0);
 }
 
+// kMinimal's material as Tresca, with only the required key: the strength
+// defaults (no softening, no rate effect) fill in the rest.
+const char* const kTrescaClay =
+    "poisson_ratio = 0.3\n"
+    "model = \"tresca\"\n"
+    "su0 = 2500";
+
+TEST(SceneParser, TrescaMaterialTakesDefaults) {
+  const Scene s = parse_scene(replace_lines(18, 18, kTrescaClay), "tresca.toml");
+  const MaterialSpec& m = s.materials[0];
+  const MaterialSpec defaults;
+  EXPECT_EQ(m.model, MaterialModel::Tresca);
+  EXPECT_EQ(m.su0, 2500.0);
+  EXPECT_EQ(m.sensitivity, 1.0);
+  EXPECT_EQ(m.xi95, defaults.xi95);
+  EXPECT_EQ(m.eta, 0.0);
+  EXPECT_EQ(m.rate_exponent, 0.1);
+  EXPECT_EQ(m.reference_rate, 1.0);
+  EXPECT_EQ(m.strength_form, StrengthForm::Multiplicative);
+  EXPECT_EQ(m.youngs_modulus, 1.0e5);
+}
+
+TEST(SceneParser, TrescaMaterialEveryKey) {
+  const Scene s = parse_scene(
+      replace_lines(18, 18, std::string(kTrescaClay) +
+                                "\nsensitivity = 40\nxi95 = 45\neta = 0.0167\n"
+                                "rate_exponent = 0.5\nreference_rate = 0.01\n"
+                                "strength_form = \"additive\""),
+      "tresca.toml");
+  const MaterialSpec& m = s.materials[0];
+  EXPECT_EQ(m.sensitivity, 40.0);
+  EXPECT_EQ(m.xi95, 45.0);
+  EXPECT_EQ(m.eta, 0.0167);
+  EXPECT_EQ(m.rate_exponent, 0.5);
+  EXPECT_EQ(m.reference_rate, 0.01);
+  EXPECT_EQ(m.strength_form, StrengthForm::Additive);
+}
+
+TEST(SceneParser, RestDetectionIsOffByDefault) {
+  const Scene defaults = parse_scene(kMinimal, "mini.toml");
+  EXPECT_EQ(defaults.time.rest_fraction, 0.0);
+  EXPECT_EQ(defaults.time.rest_duration, 1.0);
+  const Scene s = parse_scene(
+      replace_lines(12, 12, "output_interval = 0.1\nrest_fraction = 0.01\nrest_duration = 2.5"),
+      "rest.toml");
+  EXPECT_EQ(s.time.rest_fraction, 0.01);
+  EXPECT_EQ(s.time.rest_duration, 2.5);
+}
+
+// kMinimal with a [base] table after the body (its first line is 27).
+std::string with_base(const std::string& base_lines) {
+  return replace_lines(25, 25, "max = [3.0, 2.0]\n\n[base]\n" + base_lines);
+}
+
+TEST(SceneParser, PlanarBaseFreesTheBottom) {
+  const Scene s = parse_scene(with_base("kind = \"planar\""), "planar.toml");
+  EXPECT_EQ(s.base.kind, BaseKind::Planar);
+  EXPECT_EQ(s.base.interface, InterfaceKind::NoSlip);
+  EXPECT_TRUE(s.base.points.empty());
+  // kMinimal has no [boundary]: the bottom's default (fixed) gives way to the base.
+  EXPECT_EQ(s.boundary.bottom, BoundaryKind::Free);
+  EXPECT_EQ(parse_scene(kMinimal, "mini.toml").base.kind, BaseKind::None);
+}
+
+TEST(SceneParser, PolylineBaseWithFriction) {
+  const Scene s = parse_scene(
+      with_base("kind = \"polyline\"\npoints = [[0, 3], [4, 1.5], [10, 1]]\n"
+                "interface = \"frictional\"\nshear_strength = 1000") +
+          "\n[boundary]\nbottom = \"free\"\n",
+      "polyline.toml");
+  EXPECT_EQ(s.base.kind, BaseKind::Polyline);
+  ASSERT_EQ(s.base.points.size(), 3u);
+  EXPECT_EQ(s.base.points[1], Eigen::Vector2d(4.0, 1.5));
+  EXPECT_EQ(s.base.interface, InterfaceKind::Frictional);
+  EXPECT_EQ(s.base.shear_strength, 1000.0);
+  EXPECT_EQ(s.boundary.bottom, BoundaryKind::Free);
+
+  const Scene coulomb = parse_scene(
+      with_base("kind = \"planar\"\ninterface = \"coulomb\"\nfriction = 0.3"), "mu.toml");
+  EXPECT_EQ(coulomb.base.interface, InterfaceKind::Coulomb);
+  EXPECT_EQ(coulomb.base.friction, 0.3);
+}
+
 // A scene that is wrong in one way, and what the error must say.
 struct ErrorCase {
   const char* name;
   int first_line, last_line;  // replaced lines of kMinimal
-  const char* replacement;
+  std::string replacement;
   int line;                   // where the error must point
   const char* key;
   const char* what;           // part of the message after the key
@@ -241,7 +324,73 @@ INSTANTIATE_TEST_SUITE_P(
                   "gravity.slope_angle", "must be in (-90, 90)"},
         ErrorCase{"TrapezoidWithoutTop", 23, 25, kFlatTrapezoid, 25, "body[0].base_length",
                   "must be > 0"},
-        ErrorCase{"NoBodies", 20, 25, "", 1, "body", "missing required key"}),
+        ErrorCase{"NoBodies", 20, 25, "", 1, "body", "missing required key"},
+        ErrorCase{"RestFractionOne", 12, 12, "output_interval = 0.1\nrest_fraction = 1", 13,
+                  "time.rest_fraction", "must be in [0, 1) (got 1)"},
+        ErrorCase{"RestDurationZero", 12, 12, "output_interval = 0.1\nrest_duration = 0", 13,
+                  "time.rest_duration", "must be > 0 (got 0)"},
+        ErrorCase{"UnknownModel", 18, 18, "poisson_ratio = 0.3\nmodel = \"mohr\"", 19,
+                  "material[0].model", "must be one of \"elastic\", \"tresca\""},
+        ErrorCase{"TrescaKeyOnElastic", 18, 18, "poisson_ratio = 0.3\nsu0 = 2500", 19,
+                  "material[0].su0", "unknown key"},
+        ErrorCase{"TrescaWithoutSu0", 18, 18, "poisson_ratio = 0.3\nmodel = \"tresca\"", 14,
+                  "material[0].su0", "missing required key"},
+        ErrorCase{"Su0Zero", 18, 18, "poisson_ratio = 0.3\nmodel = \"tresca\"\nsu0 = 0", 20,
+                  "material[0].su0", "must be > 0 (got 0)"},
+        ErrorCase{"SensitivityBelowOne", 18, 18, std::string(kTrescaClay) + "\nsensitivity = 0.5",
+                  21, "material[0].sensitivity", "must be >= 1 (got 0.5)"},
+        ErrorCase{"SofteningWithoutXi95", 18, 18, std::string(kTrescaClay) + "\nsensitivity = 40",
+                  14, "material[0].xi95", "missing required key"},
+        ErrorCase{"Xi95Zero", 18, 18, std::string(kTrescaClay) + "\nxi95 = 0", 21,
+                  "material[0].xi95", "must be > 0 (got 0)"},
+        ErrorCase{"NegativeEta", 18, 18, std::string(kTrescaClay) + "\neta = -0.1", 21,
+                  "material[0].eta", "must be >= 0 (got -0.1)"},
+        ErrorCase{"RateExponentAboveOne", 18, 18,
+                  std::string(kTrescaClay) + "\nrate_exponent = 1.5", 21, "material[0].rate_exponent", "must be in (0, 1] (got 1.5)"},
+        ErrorCase{"ReferenceRateZero", 18, 18, std::string(kTrescaClay) + "\nreference_rate = 0",
+                  21, "material[0].reference_rate", "must be > 0 (got 0)"},
+        ErrorCase{"BadStrengthForm", 18, 18,
+                  std::string(kTrescaClay) + "\nstrength_form = \"product\"", 21,
+                  "material[0].strength_form",
+                  "must be one of \"additive\", \"multiplicative\" (got \"product\")"},
+        ErrorCase{"BaseWithoutKind", 25, 25, "max = [3.0, 2.0]\n[base]\ninterface = \"no_slip\"",
+                  26, "base.kind", "missing required key"},
+        ErrorCase{"UnknownBaseKind", 25, 25, "max = [3.0, 2.0]\n[base]\nkind = \"curved\"", 27,
+                  "base.kind", "must be one of \"planar\", \"polyline\""},
+        ErrorCase{"PointsOnPlanarBase", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"planar\"\npoints = [[0, 0], [1, 0]]", 28,
+                  "base.points", "unknown key"},
+        ErrorCase{"PolylineWithoutPoints", 25, 25, "max = [3.0, 2.0]\n[base]\nkind = \"polyline\"",
+                  26, "base.points", "missing required key"},
+        ErrorCase{"PolylineOnePoint", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"polyline\"\npoints = [[0, 0]]", 28,
+                  "base.points", "expected at least 2 points (got 1)"},
+        ErrorCase{"PolylineXNotIncreasing", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"polyline\"\n"
+                  "points = [[0, 1], [4, 0.5], [4, 0]]",
+                  28, "base.points",
+                  "x must increase strictly along the line: point 2 (4, 0) follows x = 4"},
+        ErrorCase{"PolylineOutsideGrid", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"polyline\"\npoints = [[0, 1], [12, 0]]", 28,
+                  "base.points", "point 1 (12, 0) lies outside the grid's x range [0, 10]"},
+        ErrorCase{"FrictionalWithoutTau", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"planar\"\ninterface = \"frictional\"", 26,
+                  "base.shear_strength", "missing required key"},
+        ErrorCase{"TauOnNoSlip", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"planar\"\nshear_strength = 1000", 28,
+                  "base.shear_strength", "unknown key"},
+        ErrorCase{"FrictionOnFrictional", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"planar\"\ninterface = \"frictional\"\n"
+                  "shear_strength = 1000\nfriction = 0.3",
+                  30, "base.friction", "unknown key"},
+        ErrorCase{"CoulombFrictionZero", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"planar\"\ninterface = \"coulomb\"\n"
+                  "friction = 0",
+                  29, "base.friction", "must be > 0 (got 0)"},
+        ErrorCase{"BaseAndFixedBottom", 13, 13,
+                  "[boundary]\nbottom = \"fixed\"\n[base]\nkind = \"planar\"\n", 14,
+                  "boundary.bottom",
+                  "must be \"free\" when [base] is given: the base is the bottom"}),
     [](const ::testing::TestParamInfo<ErrorCase>& info) { return std::string(info.param.name); });
 
 TEST(SceneParser, MissingFileHasNoLine) {
@@ -283,6 +432,8 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.time.end, b.time.end);
   EXPECT_EQ(a.time.output_interval, b.time.output_interval);
   EXPECT_EQ(a.time.courant, b.time.courant);
+  EXPECT_EQ(a.time.rest_fraction, b.time.rest_fraction);
+  EXPECT_EQ(a.time.rest_duration, b.time.rest_duration);
   EXPECT_EQ(a.gravity.vector, b.gravity.vector);
   EXPECT_EQ(a.gravity.slope_angle_deg, b.gravity.slope_angle_deg);
   EXPECT_EQ(a.solver.flip, b.solver.flip);
@@ -295,6 +446,13 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.materials[i].density, b.materials[i].density);
     EXPECT_EQ(a.materials[i].youngs_modulus, b.materials[i].youngs_modulus);
     EXPECT_EQ(a.materials[i].poisson_ratio, b.materials[i].poisson_ratio);
+    EXPECT_EQ(a.materials[i].su0, b.materials[i].su0);
+    EXPECT_EQ(a.materials[i].sensitivity, b.materials[i].sensitivity);
+    EXPECT_EQ(a.materials[i].xi95, b.materials[i].xi95);
+    EXPECT_EQ(a.materials[i].eta, b.materials[i].eta);
+    EXPECT_EQ(a.materials[i].rate_exponent, b.materials[i].rate_exponent);
+    EXPECT_EQ(a.materials[i].reference_rate, b.materials[i].reference_rate);
+    EXPECT_EQ(a.materials[i].strength_form, b.materials[i].strength_form);
   }
   ASSERT_EQ(a.bodies.size(), b.bodies.size());
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {
@@ -303,6 +461,11 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.bodies[i].polygon, b.bodies[i].polygon);
     EXPECT_EQ(a.bodies[i].velocity, b.bodies[i].velocity);
   }
+  EXPECT_EQ(a.base.kind, b.base.kind);
+  EXPECT_EQ(a.base.points, b.base.points);
+  EXPECT_EQ(a.base.interface, b.base.interface);
+  EXPECT_EQ(a.base.shear_strength, b.base.shear_strength);
+  EXPECT_EQ(a.base.friction, b.base.friction);
   EXPECT_EQ(a.output.compress, b.output.compress);
   EXPECT_EQ(a.overrides, b.overrides);
 }
@@ -317,20 +480,38 @@ TEST(SceneWriter, EveryNonDefaultValueRoundTrips) {
       "[scene]\nname = \"odd \\\"one\\\"\"\ndescription = \"tab\\there\\nnewline\"\n"
       "[grid]\ncell_size = 0.1\nmin = [-1.3, 0.7]\nmax = [7.77, 3.33]\n"
       "shape = \"linear\"\nppc = 3\n"
-      "[boundary]\nleft = \"free\"\nright = \"fixed\"\nbottom = \"slip\"\ntop = \"fixed\"\n"
-      "[time]\nend = 3\noutput_interval = 0.1\ncourant = 0.7\n"
+      "[boundary]\nleft = \"free\"\nright = \"fixed\"\nbottom = \"free\"\ntop = \"fixed\"\n"
+      "[time]\nend = 3\noutput_interval = 0.1\ncourant = 0.7\nrest_fraction = 0.003\n"
+      "rest_duration = 0.7\n"
       "[gravity]\nmagnitude = 9.80665\nslope_angle = -13.75\n"
       "[solver]\nflip = 0.5\nmass_threshold = 1e-7\ndamping = 0.1\n"
       "[[material]]\nname = \"a\"\ndensity = 525\nyoungs_modulus = 1.5e6\npoisson_ratio = -0.2\n"
+      "model = \"tresca\"\nsu0 = 15e3\nsensitivity = 40\nxi95 = 45\neta = 0.0167\n"
+      "rate_exponent = 0.5\nreference_rate = 0.3\nstrength_form = \"additive\"\n"
       "[[material]]\nname = \"b\"\ndensity = 2000.5\nyoungs_modulus = 3e7\npoisson_ratio = 0.1\n"
       "[[body]]\nname = \"t\"\nmaterial = \"b\"\ntype = \"trapezoid\"\n"
       "base_start = [0.1, 0.8]\nbase_length = 5.3\nheight = 1.1\n"
       "rear_angle = 100.0\nfront_angle = 33.3\nvelocity = [0.25, -1e-3]\n"
       "[[body]]\nname = \"p\"\nmaterial = \"a\"\ntype = \"polygon\"\n"
       "vertices = [[6, 1], [7, 1], [6.5, 2.9]]\n"
+      "[base]\nkind = \"polyline\"\npoints = [[-1.3, 0.75], [2.1, 0.71], [7.77, 0.7]]\n"
+      "interface = \"coulomb\"\nfriction = 0.35\n"
       "[output]\ncompress = false\n",
       "odd.toml");
   apply_overrides(s, 0.13, 4);
+  expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
+}
+
+// The other interface, a planar base, and defaults of a Tresca material.
+TEST(SceneWriter, PlanarBaseAndTrescaDefaultsRoundTrip) {
+  const Scene s = parse_scene(
+      replace_lines(18, 25, std::string(kTrescaClay) +
+                                "\n[[body]]\nname = \"block\"\nmaterial = \"clay\"\n"
+                                "type = \"rectangle\"\nmin = [1.0, 0.0]\nmax = [3.0, 2.0]\n"
+                                "[base]\nkind = \"planar\"\ninterface = \"frictional\"\n"
+                                "shear_strength = 1e3"),
+      "planar.toml");
+  ASSERT_EQ(s.base.kind, BaseKind::Planar);
   expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
 }
 

@@ -16,10 +16,12 @@ void Grid::fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x,
   g.oy = domain_y + j_lo * h;
   const std::size_t n = static_cast<std::size_t>(g.nx) * g.ny;
   if (n > m_.size()) {
-    for (auto* a : {&m_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &vmx_, &vmy_})
+    for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &vmx_, &vmy_,
+                    &fbase_})
       a->resize(n);
   }
   g.m = m_.data();
+  g.vol = vol_.data();
   g.px = px_.data();
   g.py = py_.data();
   g.fx = fx_.data();
@@ -30,7 +32,8 @@ void Grid::fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x,
   g.vy = vy_.data();
   g.vmx = vmx_.data();
   g.vmy = vmy_.data();
-  for (auto* a : {&m_, &px_, &py_, &fx_, &fy_}) std::fill_n(a->begin(), n, 0.0);
+  g.fbase = fbase_.data();
+  for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_}) std::fill_n(a->begin(), n, 0.0);
 }
 
 }  // namespace runout

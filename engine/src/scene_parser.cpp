@@ -319,12 +319,15 @@ BoundarySpec read_boundary(TableReader r) {
 }
 
 TimeSpec read_time(TableReader r) {
-  r.check_keys({"end", "output_interval", "courant"});
+  r.check_keys({"end", "output_interval", "courant", "rest_fraction", "rest_duration"});
   TimeSpec time;
   time.end = r.need("end").number(above(0.0));
   const Value interval = r.need("output_interval");
   time.output_interval = interval.number(above(0.0));
   if (auto v = r.find("courant")) time.courant = v->number(between(0, 1, "(]"));
+  if (auto v = r.find("rest_fraction"))
+    time.rest_fraction = v->number(between(0, 1, "[)"));
+  if (auto v = r.find("rest_duration")) time.rest_duration = v->number(above(0.0));
   if (time.output_interval > time.end)
     interval.fail("must be <= time.end (got " + format_number(time.output_interval) +
                   " > " + format_number(time.end) + ")");
@@ -362,19 +365,41 @@ SolverSpec read_solver(TableReader r) {
   return solver;
 }
 
+// The strength of SCENES.md, "Strength of the slide". The defaults leave
+// out softening (sensitivity 1) and the rate effect (eta 0); xi95 has no
+// sensible default once there is softening, so it is then required.
+void read_tresca(const TableReader& r, MaterialSpec& m) {
+  m.su0 = r.need("su0").number(above(0.0));
+  if (auto v = r.find("sensitivity")) m.sensitivity = v->number(at_least(1.0));
+  const auto xi95 = m.sensitivity > 1.0 ? r.need("xi95") : r.find("xi95");
+  if (xi95) m.xi95 = xi95->number(above(0.0));
+  if (auto v = r.find("eta")) m.eta = v->number(at_least(0.0));
+  if (auto v = r.find("rate_exponent")) m.rate_exponent = v->number(between(0, 1, "(]"));
+  if (auto v = r.find("reference_rate")) m.reference_rate = v->number(above(0.0));
+  if (auto v = r.find("strength_form"))
+    m.strength_form = v->choice(scene_text::kStrengthFormNames).value;
+}
+
 std::vector<MaterialSpec> read_materials(const TableReader& root) {
   std::vector<MaterialSpec> materials;
   for (const TableReader& r : root.need("material").tables()) {
-    r.check_keys({"name", "model", "density", "youngs_modulus", "poisson_ratio"});
+    // The keys a material may have depend on its model, so the model comes first.
     MaterialSpec m;
+    if (auto v = r.find("model")) m.model = v->choice(scene_text::kModelNames).value;
+    std::vector<std::string_view> keys = {"name", "model", "density", "youngs_modulus",
+                                          "poisson_ratio"};
+    if (m.model == MaterialModel::Tresca)
+      keys.insert(keys.end(), {"su0", "sensitivity", "xi95", "eta", "rate_exponent",
+                               "reference_rate", "strength_form"});
+    r.check_keys(keys);
     const Value name = r.need("name");
     m.name = name.string();
     for (const MaterialSpec& earlier : materials)
       if (earlier.name == m.name) name.fail("duplicate material name " + in_quotes(m.name));
-    if (auto v = r.find("model")) m.model = v->choice(scene_text::kModelNames).value;
     m.density = r.need("density").number(above(0.0));
     m.youngs_modulus = r.need("youngs_modulus").number(above(0.0));
     m.poisson_ratio = r.need("poisson_ratio").number(between(-1, 0.5, "()"));
+    if (m.model == MaterialModel::Tresca) read_tresca(r, m);
     materials.push_back(std::move(m));
   }
   return materials;
@@ -436,6 +461,10 @@ const BodyType kBodyTypes[] = {
     {"polygon", {"vertices"}, read_vertices},
 };
 
+std::string point_text(const Eigen::Vector2d& v) {
+  return "(" + format_number(v.x()) + ", " + format_number(v.y()) + ")";
+}
+
 // The solver wants a counter-clockwise simple outline inside the grid.
 Polygon checked_outline(Polygon outline, const GridSpec& grid,
                         const TableReader& r, int line) {
@@ -447,8 +476,8 @@ Polygon checked_outline(Polygon outline, const GridSpec& grid,
     if ((v.array() >= grid.min.array()).all() && (v.array() <= grid.max.array()).all())
       continue;
     r.fail("polygon", line,
-           "vertex (" + format_number(v.x()) + ", " + format_number(v.y()) +
-               ") lies outside the grid [" + format_number(grid.min.x()) + ", " +
+           "vertex " + point_text(v) + " lies outside the grid [" +
+               format_number(grid.min.x()) + ", " +
                format_number(grid.max.x()) + "] x [" + format_number(grid.min.y()) +
                ", " + format_number(grid.max.y()) + "]");
   }
@@ -482,6 +511,53 @@ std::vector<BodySpec> read_bodies(const TableReader& root,
     bodies.push_back(std::move(body));
   }
   return bodies;
+}
+
+// A bathymetry y(x): one height for every x of the grid it covers.
+std::vector<Eigen::Vector2d> read_base_line(const Value& value, const GridSpec& grid) {
+  std::vector<Eigen::Vector2d> points = value.points();
+  if (points.size() < 2)
+    value.fail("expected at least 2 points (got " + std::to_string(points.size()) + ")");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d& p = points[i];
+    const std::string which = "point " + std::to_string(i) + " " + point_text(p);
+    if (p.x() < grid.min.x() || p.x() > grid.max.x())
+      value.fail(which + " lies outside the grid's x range [" + format_number(grid.min.x()) +
+                 ", " + format_number(grid.max.x()) + "]");
+    if (i > 0 && !(p.x() > points[i - 1].x()))
+      value.fail("x must increase strictly along the line: " + which + " follows x = " +
+                 format_number(points[i - 1].x()));
+  }
+  return points;
+}
+
+// The keys of [base] depend on its kind and its interface, so those two
+// come first.
+BaseSpec read_base(const TableReader& r, const GridSpec& grid) {
+  BaseSpec base;
+  base.kind = r.need("kind").choice(scene_text::kBaseNames).value;
+  if (auto v = r.find("interface")) base.interface = v->choice(scene_text::kInterfaceNames).value;
+  std::vector<std::string_view> keys = {"kind", "interface"};
+  if (base.kind == BaseKind::Polyline) keys.push_back("points");
+  if (base.interface == InterfaceKind::Frictional) keys.push_back("shear_strength");
+  if (base.interface == InterfaceKind::Coulomb) keys.push_back("friction");
+  r.check_keys(keys);
+  if (base.kind == BaseKind::Polyline) base.points = read_base_line(r.need("points"), grid);
+  if (base.interface == InterfaceKind::Frictional)
+    base.shear_strength = r.need("shear_strength").number(above(0.0));
+  if (base.interface == InterfaceKind::Coulomb)
+    base.friction = r.need("friction").number(above(0.0));
+  return base;
+}
+
+// The base is the bottom of the slide: a bottom boundary condition as
+// well would act on the same nodes as the contact, so only "free" may be
+// given, and it is what an absent one becomes.
+void free_bottom_for_base(const TableReader& boundary_table, BoundarySpec& boundary) {
+  const auto bottom = boundary_table.find("bottom");
+  if (bottom && boundary.bottom != BoundaryKind::Free)
+    bottom->fail("must be \"free\" when [base] is given: the base is the bottom");
+  boundary.bottom = BoundaryKind::Free;
 }
 
 OutputSpec read_output(TableReader r) {
@@ -531,11 +607,16 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   const toml::table root_table = parse_toml(text, source_name);
   const TableReader root(root_table, "", source_name, 1);
   root.check_keys({"scene", "grid", "boundary", "time", "gravity", "solver",
-                   "material", "body", "output", "run"});
+                   "material", "body", "base", "output", "run"});
   Scene scene;
   read_scene_info(root.need("scene").table(), scene);
   scene.grid = read_grid(root.need("grid").table());
-  scene.boundary = read_boundary(root.optional_table("boundary"));
+  const TableReader boundary = root.optional_table("boundary");
+  scene.boundary = read_boundary(boundary);
+  if (auto base = root.find("base")) {
+    scene.base = read_base(base->table(), scene.grid);
+    free_bottom_for_base(boundary, scene.boundary);
+  }
   scene.time = read_time(root.need("time").table());
   scene.gravity = read_gravity(root.optional_table("gravity"));
   scene.solver = read_solver(root.optional_table("solver"));

@@ -28,7 +28,17 @@ inline constexpr Named<BoundaryKind> kBoundaryNames[] = {
     {"slip", BoundaryKind::Slip},
     {"fixed", BoundaryKind::Fixed}};
 inline constexpr Named<MaterialModel> kModelNames[] = {
-    {"elastic", MaterialModel::Elastic}};
+    {"elastic", MaterialModel::Elastic}, {"tresca", MaterialModel::Tresca}};
+inline constexpr Named<StrengthForm> kStrengthFormNames[] = {
+    {"additive", StrengthForm::Additive},
+    {"multiplicative", StrengthForm::Multiplicative}};
+// BaseKind::None has no name: it is the absence of a [base] table.
+inline constexpr Named<BaseKind> kBaseNames[] = {
+    {"planar", BaseKind::Planar}, {"polyline", BaseKind::Polyline}};
+inline constexpr Named<InterfaceKind> kInterfaceNames[] = {
+    {"no_slip", InterfaceKind::NoSlip},
+    {"frictional", InterfaceKind::Frictional},
+    {"coulomb", InterfaceKind::Coulomb}};
 
 template <class Value, std::size_t N>
 std::string_view name_of(const Named<Value> (&names)[N], Value value) {

@@ -25,6 +25,12 @@ std::string vec2(const Eigen::Vector2d& v) {
   return "[" + number(v.x()) + ", " + number(v.y()) + "]";
 }
 
+std::string points(const std::vector<Eigen::Vector2d>& list) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < list.size(); ++i) text += (i ? ", " : "") + vec2(list[i]);
+  return text + "]";
+}
+
 std::string quoted(std::string_view text) {
   std::string out = "\"";
   for (const char c : text) {
@@ -79,7 +85,18 @@ void write_material(std::ostream& out, const MaterialSpec& m) {
       << "model = " << quoted(name_of(scene_text::kModelNames, m.model)) << "\n"
       << "density = " << number(m.density) << "\n"
       << "youngs_modulus = " << number(m.youngs_modulus) << "\n"
-      << "poisson_ratio = " << number(m.poisson_ratio) << "\n\n";
+      << "poisson_ratio = " << number(m.poisson_ratio) << "\n";
+  if (m.model == MaterialModel::Tresca) {
+    out << "su0 = " << number(m.su0) << "\n"
+        << "sensitivity = " << number(m.sensitivity) << "\n"
+        << "xi95 = " << number(m.xi95) << "\n"
+        << "eta = " << number(m.eta) << "\n"
+        << "rate_exponent = " << number(m.rate_exponent) << "\n"
+        << "reference_rate = " << number(m.reference_rate) << "\n"
+        << "strength_form = "
+        << quoted(name_of(scene_text::kStrengthFormNames, m.strength_form)) << "\n";
+  }
+  out << "\n";
 }
 
 void write_body(std::ostream& out, const BodySpec& body,
@@ -88,11 +105,22 @@ void write_body(std::ostream& out, const BodySpec& body,
       << "name = " << quoted(body.name) << "\n"
       << "material = " << quoted(materials.at(body.material).name) << "\n"
       << "type = \"polygon\"\n"
-      << "vertices = [";
-  for (std::size_t i = 0; i < body.polygon.size(); ++i)
-    out << (i ? ", " : "") << vec2(body.polygon[i]);
-  out << "]\n"
+      << "vertices = " << points(body.polygon) << "\n"
       << "velocity = " << vec2(body.velocity) << "\n\n";
+}
+
+// Only a scene with a base has the table: BaseKind::None is its absence.
+void write_base(std::ostream& out, const BaseSpec& base) {
+  if (base.kind == BaseKind::None) return;
+  out << "[base]\n"
+      << "kind = " << quoted(name_of(scene_text::kBaseNames, base.kind)) << "\n";
+  if (base.kind == BaseKind::Polyline) out << "points = " << points(base.points) << "\n";
+  out << "interface = " << quoted(name_of(scene_text::kInterfaceNames, base.interface)) << "\n";
+  if (base.interface == InterfaceKind::Frictional)
+    out << "shear_strength = " << number(base.shear_strength) << "\n";
+  if (base.interface == InterfaceKind::Coulomb)
+    out << "friction = " << number(base.friction) << "\n";
+  out << "\n";
 }
 
 }  // namespace
@@ -123,7 +151,9 @@ std::string to_toml(const Scene& scene) {
   out << "[time]\n"
       << "end = " << number(scene.time.end) << "\n"
       << "output_interval = " << number(scene.time.output_interval) << "\n"
-      << "courant = " << number(scene.time.courant) << "\n\n";
+      << "courant = " << number(scene.time.courant) << "\n"
+      << "rest_fraction = " << number(scene.time.rest_fraction) << "\n"
+      << "rest_duration = " << number(scene.time.rest_duration) << "\n\n";
 
   write_gravity(out, scene.gravity);
 
@@ -134,6 +164,7 @@ std::string to_toml(const Scene& scene) {
 
   for (const MaterialSpec& m : scene.materials) write_material(out, m);
   for (const BodySpec& body : scene.bodies) write_body(out, body, scene.materials);
+  write_base(out, scene.base);
 
   out << "[output]\n"
       << "compress = " << (scene.output.compress ? "true" : "false") << "\n\n"

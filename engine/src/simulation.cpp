@@ -39,13 +39,22 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
   // The parser snaps max up to a node; the tolerance absorbs the rounding.
   c.domain_nx = static_cast<int>(std::ceil((s.grid.max.x() - s.grid.min.x()) / h - 1e-9));
   c.domain_ny = static_cast<int>(std::ceil((s.grid.max.y() - s.grid.min.y()) / h - 1e-9));
+  c.interface = s.base.interface;
+  c.shear_strength = s.base.shear_strength;
+  c.friction = s.base.friction;
   return c;
 }
 
 std::vector<MaterialParams> make_materials(const Scene& s) {
   std::vector<MaterialParams> out;
-  for (const auto& m : s.materials)
-    out.push_back(elastic_params(m.density, m.youngs_modulus, m.poisson_ratio));
+  for (const auto& m : s.materials) {
+    MaterialParams params = elastic_params(m.density, m.youngs_modulus, m.poisson_ratio);
+    params.model = m.model;
+    if (m.model == MaterialModel::Tresca)
+      params.strength = {m.su0, 1.0 / m.sensitivity, m.xi95, m.eta, m.rate_exponent,
+                         m.reference_rate, m.strength_form};
+    out.push_back(params);
+  }
   return out;
 }
 
@@ -55,12 +64,14 @@ Simulation::Simulation(const Scene& scene) : Simulation(scene, seed_particles(sc
 
 Simulation::Simulation(const Scene& scene, Particles particles)
     : particles_(std::move(particles)),
+      base_(scene.base, scene.grid.min.y()),
       materials_(make_materials(scene)),
       domain_min_(scene.grid.min),
       domain_max_(scene.grid.max),
       h_(scene.grid.cell_size),
       courant_(scene.time.courant) {
   config_ = make_config(scene, materials_);
+  config_.base = base_.view();
   const int n = particles_.size();
   scratch_dx_.assign(n, 0.0);
   scratch_dy_.assign(n, 0.0);
@@ -154,6 +165,9 @@ void Simulation::step(double dt) {
   scatter([&](int p, auto add) { p2g(P, p, st[p], g, c, add); });
 #pragma omp parallel for if (nodes > kParallelMin)
   for (int n = 0; n < nodes; ++n) grid_update(g, n, c, dt);
+  double basal = 0;  // in node order, so the same every run
+  if (c.base.kind != BaseKind::None)
+    for (int n = 0; n < nodes; ++n) basal += g.fbase[n];
 #pragma omp parallel for if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) g2p(P, p, st[p], g, c, dt, s);
 
@@ -182,6 +196,7 @@ void Simulation::step(double dt) {
     throw NumericalFailure(msg.str());
   }
   max_signal_speed_ = smax;
+  basal_shear_force_ = basal;
   time_ += dt;
   last_dt_ = dt;
   ++steps_;

@@ -16,11 +16,13 @@ struct GridView {
   double ox = 0, oy = 0;    // position of the box's node (0, 0)
   double h = 0;
   double *m;                // mass
+  double *vol;              // volume, sum N V: gives a base node its interface area
   double *px, *py;          // momentum (then, in MUSL, the remapped momentum)
   double *fx, *fy;          // internal + external force
   double *v0x, *v0y;        // velocity at the start of the step, p/m
   double *vx, *vy;          // velocity at the end of the step, constrained
   double *vmx, *vmy;        // mid-step velocity (v0 + v)/2, constrained
+  double *fbase;            // base's tangential force on the slide at the node, along +s
 
   RUNOUT_HD int index(int i, int j) const { return j * nx + i; }
   RUNOUT_HD int size() const { return nx * ny; }
@@ -38,7 +40,7 @@ class Grid {
 
  private:
   GridView view_;
-  std::vector<double> m_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_;
+  std::vector<double> m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_, fbase_;
 };
 
 }  // namespace runout

@@ -6,6 +6,13 @@ namespace runout {
 
 enum class ShapeKind { Gimp, Linear };
 enum class BoundaryKind { Free, Slip, Fixed };
-enum class MaterialModel { Elastic };
+enum class MaterialModel { Elastic, Tresca };
+// How the softened strength and the rate factor combine (SCENES.md):
+// additive su0 S + su0 R, multiplicative su0 S (1 + R).
+enum class StrengthForm { Additive, Multiplicative };
+// The slide-base interface of Geo-contact: no-slip, a limiting shear
+// stress tau (frictional, as in SCENES.md) or Coulomb friction mu.
+enum class InterfaceKind { NoSlip, Frictional, Coulomb };
+enum class BaseKind { None, Planar, Polyline };
 
 }  // namespace runout

@@ -6,6 +6,7 @@
 
 #include "runout/host_device.hpp"
 #include "runout/kinds.hpp"
+#include "runout/strength.hpp"
 
 namespace runout {
 
@@ -14,6 +15,7 @@ struct MaterialParams {
   double density = 0;  // initial density [kg/m3]
   double bulk = 0;     // K = E / (3 (1 - 2 nu))
   double shear = 0;    // G = E / (2 (1 + nu))
+  StrengthParams strength;  // Tresca only
 };
 
 inline MaterialParams elastic_params(double density, double youngs, double poisson) {
@@ -34,7 +36,7 @@ RUNOUT_HD inline double p_wave_modulus(const MaterialParams& m) {
 // Stress and internal variables of one material point.
 struct StressPoint {
   double sxx, syy, sxy, szz;  // Cauchy stress, tension positive
-  double xi;                  // accumulated plastic shear strain
+  double xi;                  // accumulated engineering plastic shear strain
   double su;                  // current strength (0 for elastic)
 };
 
@@ -59,11 +61,83 @@ RUNOUT_HD inline void elastic_update(const MaterialParams& m, const StrainIncrem
   s.sxy += 2.0 * m.shear * d.dexy;
 }
 
+// Undrained Tresca in plane strain with the softening, rate-dependent
+// strength of strength.hpp, by an elastic predictor and a radial return
+// (de Souza Neto, Peric & Owen 2008, "Computational Methods for
+// Plasticity", ch. 7: the return mapping of the von Mises model with
+// nonlinear isotropic hardening, one scalar equation in the plastic
+// multiplier; here the hardening is softening).
+//
+// The yield function is the radius of the in-plane Mohr circle,
+//   tau = sqrt(((sxx - syy) / 2)^2 + sxy^2),   f = tau - su(xi, gamma_dot).
+// Its flow direction is in-plane and traceless, so the plastic strain has
+// no zz part: plane strain (de_zz = 0) then leaves szz at its trial value,
+// and the mean stress (sxx + syy + szz) / 3 is not changed by the return.
+//
+// xi is the accumulated engineering plastic shear strain: each plastic
+// step adds dxi = (tau_trial - tau) / G, the engineering shear strain the
+// elastic shear stress gives up. gamma_dot is the caller's in-plane
+// engineering shear strain rate sqrt((Dxx - Dyy)^2 + 4 Dxy^2) (the
+// conjugate of tau), held for the step.
+//
+// Return: find dxi >= 0 with g(dxi) = tau_trial - G dxi - su(xi + dxi) = 0,
+// so the stress ends on the yield surface of the end of the increment.
+// g(0) > 0 and g(tau_trial / G) = -su < 0 bracket the root, which is
+// unique: su is convex in xi, so g is concave. Newton uses the exact slope
+// g' = -G - dsu/dxi, dsu/dxi = -(3 / xi95) su0 a (S - d_rem) (a from
+// strength.hpp); a step that leaves the bracket, or a slope that is not
+// negative (the softening modulus exceeds G: a snap-back), falls back to
+// bisection, so the iteration converges for any softening.
+RUNOUT_HD inline void tresca_update(const MaterialParams& m, const StrainIncrement& d,
+                                    StressPoint& s) {
+  elastic_update(m, d, s);
+  const StrengthParams& p = m.strength;
+  const RateScaling k = rate_scaling(p, d.gamma_dot);
+  const double center = 0.5 * (s.sxx + s.syy);
+  const double radius_x = 0.5 * (s.sxx - s.syy);
+  const double tau_trial = std::sqrt(radius_x * radius_x + s.sxy * s.sxy);
+  const double su_trial = strength(p, k, s.xi);
+  if (tau_trial <= su_trial) {
+    s.su = su_trial;
+    return;
+  }
+
+  constexpr int kMaxIterations = 200;  // bisection alone needs ~60 to reach rounding
+  constexpr double kTolerance = 1e-12; // on |g| relative to su
+  const double G = m.shear;
+  double lo = 0.0, hi = tau_trial / G, dxi = 0.0, su = su_trial;
+  for (int it = 1;; ++it) {
+    const double S = softening(p, s.xi + dxi);
+    su = strength_at(p, k, S);
+    const double g = tau_trial - G * dxi - su;
+    if (std::fabs(g) <= kTolerance * su || it == kMaxIterations) break;
+    (g > 0.0 ? lo : hi) = dxi;
+    double next = 0.5 * (lo + hi);
+    const double slope = -G + 3.0 / p.xi95 * p.su0 * k.a * (S - p.d_rem);
+    if (slope < 0.0) {
+      const double newton = dxi - g / slope;
+      if (newton > lo && newton < hi) next = newton;
+    }
+    if (next == dxi) break;  // the bracket has shrunk to rounding
+    dxi = next;
+  }
+
+  const double scale = (tau_trial - G * dxi) / tau_trial;
+  s.sxx = center + scale * radius_x;
+  s.syy = center - scale * radius_x;
+  s.sxy *= scale;
+  s.xi += dxi;
+  s.su = su;
+}
+
 RUNOUT_HD inline void update_stress(const MaterialParams& m, const StrainIncrement& d,
                                     StressPoint& s) {
   switch (m.model) {
     case MaterialModel::Elastic:
       elastic_update(m, d, s);
+      break;
+    case MaterialModel::Tresca:
+      tresca_update(m, d, s);
       break;
   }
 }

@@ -29,6 +29,10 @@ struct TimeSpec {
   double end = 1.0;              // [s]
   double output_interval = 0.1;  // [s]
   double courant = 0.3;
+  // The run also ends at rest: kinetic energy below rest_fraction of its
+  // peak for rest_duration seconds. rest_fraction = 0 switches it off.
+  double rest_fraction = 0.0;
+  double rest_duration = 1.0;    // [s]
 };
 
 struct GravitySpec {
@@ -50,6 +54,14 @@ struct MaterialSpec {
   double density = 0.0;          // [kg/m3]
   double youngs_modulus = 0.0;   // [Pa]
   double poisson_ratio = 0.0;
+  // Tresca only (SCENES.md, "Strength of the slide"):
+  double su0 = 0.0;              // intact undrained strength [Pa]
+  double sensitivity = 1.0;      // St >= 1; d_rem = 1 / St
+  double xi95 = 1.0;             // plastic shear strain at 95 % remoulding
+  double eta = 0.0;              // viscosity coefficient; 0: no rate effect
+  double rate_exponent = 0.1;    // n
+  double reference_rate = 1.0;   // gamma_dot_ref [1/s]
+  StrengthForm strength_form = StrengthForm::Multiplicative;
 };
 
 struct BodySpec {
@@ -57,6 +69,18 @@ struct BodySpec {
   int material = 0;                        // index into Scene::materials
   std::vector<Eigen::Vector2d> polygon;    // counter-clockwise, simple
   Eigen::Vector2d velocity{0.0, 0.0};      // initial velocity [m/s]
+};
+
+// The rigid base the slide runs on. Planar: the grid's bottom line (a
+// planar-slope scene runs in the slope frame), normal +y. Polyline: a
+// bathymetry in the run's frame, points ordered in the direction of travel,
+// the slide above it (on the left of the direction of travel).
+struct BaseSpec {
+  BaseKind kind = BaseKind::None;  // None: the bottom boundary condition alone
+  std::vector<Eigen::Vector2d> points;  // Polyline only
+  InterfaceKind interface = InterfaceKind::NoSlip;
+  double shear_strength = 0.0;     // tau [Pa], Frictional
+  double friction = 0.0;           // mu, Coulomb
 };
 
 struct OutputSpec {
@@ -73,6 +97,7 @@ struct Scene {
   SolverSpec solver;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
+  BaseSpec base;
   OutputSpec output;
   // Command-line overrides applied after parsing, as "key = value" lines, so
   // the resolved scene written beside the frames says how it was run.

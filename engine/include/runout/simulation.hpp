@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "runout/base.hpp"
 #include "runout/grid.hpp"
 #include "runout/material.hpp"
 #include "runout/particles.hpp"
@@ -27,6 +28,10 @@ class Simulation {
  public:
   explicit Simulation(const Scene& scene);              // seeds the bodies
   Simulation(const Scene& scene, Particles particles);  // given particles
+  // Moves keep the base's arrays (and so the views into them) in place.
+  Simulation(Simulation&&) = default;
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   // dt = C h / max_p (c_p + |v_p|) from the current state.
   double stable_dt() const { return courant_ * h_ / max_signal_speed_; }
@@ -38,6 +43,10 @@ class Simulation {
   double time() const { return time_; }
   long steps() const { return steps_; }
   double last_dt() const { return last_dt_; }
+  // Tangential force of the base on the slide along +s in the last step
+  // [N per metre out of plane]; negative while it resists.
+  double basal_shear_force() const { return basal_shear_force_; }
+  const Base& base() const { return base_; }
   Particles& particles() { return particles_; }
   const Particles& particles() const { return particles_; }
   const Grid& grid() const { return grid_; }
@@ -51,6 +60,7 @@ class Simulation {
   void check_state(double max_speed);
 
   Particles particles_;
+  Base base_;
   Grid grid_;
   StepConfig config_;
   std::vector<MaterialParams> materials_;
@@ -62,7 +72,7 @@ class Simulation {
   Eigen::Vector2d domain_min_, domain_max_;
   double h_, courant_;
   double max_signal_speed_ = 0;
-  double time_ = 0, last_dt_ = 0;
+  double time_ = 0, last_dt_ = 0, basal_shear_force_ = 0;
   long steps_ = 0;
 };
 

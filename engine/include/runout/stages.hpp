@@ -6,7 +6,8 @@
 //
 // The step is MUSL (modified update-stress-last, Sulsky et al. 1995):
 //   1. p2g:            m_i, p_i = sum N m v, f_i = sum (-V sigma grad N + N m g)
-//   2. grid_update:    v0_i = p_i/m_i, v_i = v0_i + dt f_i/m_i, boundary conditions
+//   2. grid_update:    v0_i = p_i/m_i, v_i = v0_i + dt f_i/m_i, Geo-contact with
+//                      the rigid base, boundary conditions
 //   3. g2p:            v_p += FLIP/PIC blend; step displacement dt * sum N vmid
 //   4. p2g_momentum:   p_i = sum N m v_p(new)            (the MUSL remap)
 //   5. remap_velocity: v_i = p_i/m_i, boundary conditions
@@ -19,6 +20,7 @@
 // particle moves only in the last stage.
 #include <cmath>
 
+#include "runout/base.hpp"
 #include "runout/grid.hpp"
 #include "runout/host_device.hpp"
 #include "runout/material.hpp"
@@ -40,6 +42,11 @@ struct StepConfig {
   BoundaryKind left = BoundaryKind::Slip, right = BoundaryKind::Slip;
   BoundaryKind bottom = BoundaryKind::Fixed, top = BoundaryKind::Free;
   int domain_nx = 0, domain_ny = 0;
+  // The rigid base and its interface (Geo-contact); base.kind None: none.
+  BaseView base;
+  InterfaceKind interface = InterfaceKind::NoSlip;
+  double shear_strength = 0;     // tau, Frictional
+  double friction = 0;           // mu, Coulomb
 };
 
 // Per-particle scratch of one step: the displacement, applied at the end.
@@ -89,6 +96,7 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, con
   for_each_node(g, st, [&](int n, double N, double dNx, double dNy) {
     if (N == 0.0 && dNx == 0.0 && dNy == 0.0) return;
     add(g.m, n, N * m);
+    add(g.vol, n, N * V);
     add(g.px, n, N * m * vx);
     add(g.py, n, N * m * vy);
     add(g.fx, n, -V * (sxx * dNx + sxy * dNy) + N * m * c.gx);
@@ -115,12 +123,73 @@ RUNOUT_HD inline void constrain(const GridView& g, const StepConfig& c, int n, d
   if (gj >= c.domain_ny) apply(c.top, false);
 }
 
+// Whether node n lies on or inside the rigid base, and the base's outward
+// normal there. The tolerance keeps nodes on a planar base line in contact
+// despite the rounding of their coordinates.
+RUNOUT_HD inline bool base_contact_normal(const GridView& g, const StepConfig& c, int n,
+                                          double& nx, double& ny) {
+  if (c.base.kind == BaseKind::None) return false;
+  const BasePoint b =
+      locate_on_base(c.base, g.ox + (n % g.nx) * g.h, g.oy + (n / g.nx) * g.h);
+  nx = b.nx;
+  ny = b.ny;
+  return b.d <= 1e-9 * g.h;
+}
+
+// Geo-contact at a base node (SCENES.md): the velocity towards the base is
+// removed (separation is free); the tangential velocity is removed
+// (no-slip) or reduced by min(|v_t|, tau A dt / m) (frictional) or by
+// min(|v_t|, mu |dv_n|) (Coulomb: the tangential impulse at most mu times
+// the normal one, Bardenhagen et al. 2001). A = 2 V_i / h is the node's
+// share of the interface: a base node of a full row carries half a cell of
+// volume, h^2 / 2, and so h of interface, and a partly covered one its part.
+// Returns the tangential force of the base on the slide along the base
+// direction (+s): m dv / dt, negative while it resists down-slope motion.
+RUNOUT_HD inline double geo_contact(const StepConfig& c, double m, double vol, double h,
+                                    double dt, double nx, double ny, double& vx, double& vy) {
+  const double vn = vx * nx + vy * ny;
+  const double dvn = vn < 0.0 ? -vn : 0.0;
+  vx += dvn * nx;
+  vy += dvn * ny;
+  const double tx = ny, ty = -nx;  // +s direction: the normal turned clockwise
+  const double vt = vx * tx + vy * ty;
+  double limit = std::fabs(vt);
+  if (c.interface == InterfaceKind::Frictional) {
+    limit = c.shear_strength * (2.0 * vol / h) * dt / m;
+  } else if (c.interface == InterfaceKind::Coulomb) {
+    limit = c.friction * dvn;
+  }
+  const double dvt = std::fmin(std::fabs(vt), limit) * (vt < 0.0 ? -1.0 : 1.0);
+  vx -= dvt * tx;
+  vy -= dvt * ty;
+  return -m * dvt / dt;
+}
+
+// The kinematic part of Geo-contact, for velocities that carry no impulse
+// of their own (the mid-step and remapped velocities): no approach, and no
+// slip on a no-slip base.
+RUNOUT_HD inline void contact_kinematics(const StepConfig& c, double nx, double ny, double& vx,
+                                         double& vy) {
+  const double vn = vx * nx + vy * ny;
+  if (c.interface == InterfaceKind::NoSlip) {
+    if (vn < 0.0) {
+      vx = vy = 0.0;
+    } else {
+      vx = vn * nx;
+      vy = vn * ny;
+    }
+  } else if (vn < 0.0) {
+    vx -= vn * nx;
+    vy -= vn * ny;
+  }
+}
+
 // Stage 2. Cundall's local damping, f - alpha |f| sign(v) per component,
 // removes energy without a viscosity scale, for quasi-static settling.
 RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c, double dt) {
   const double m = g.m[n];
   if (m <= c.min_node_mass) {
-    g.v0x[n] = g.v0y[n] = g.vx[n] = g.vy[n] = g.vmx[n] = g.vmy[n] = 0.0;
+    g.v0x[n] = g.v0y[n] = g.vx[n] = g.vy[n] = g.vmx[n] = g.vmy[n] = g.fbase[n] = 0.0;
     return;
   }
   const double v0x = g.px[n] / m, v0y = g.py[n] / m;
@@ -130,8 +199,16 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
     fy -= c.damping * std::fabs(fy) * (v0y > 0.0 ? 1.0 : (v0y < 0.0 ? -1.0 : 0.0));
   }
   double vx = v0x + dt * fx / m, vy = v0y + dt * fy / m;
-  constrain(g, c, n, vx, vy);
   double vmx = 0.5 * (v0x + vx), vmy = 0.5 * (v0y + vy);
+  double nx, ny;
+  g.fbase[n] = 0.0;
+  if (base_contact_normal(g, c, n, nx, ny)) {
+    g.fbase[n] = geo_contact(c, m, g.vol[n], g.h, dt, nx, ny, vx, vy);
+    vmx = 0.5 * (v0x + vx);
+    vmy = 0.5 * (v0y + vy);
+    contact_kinematics(c, nx, ny, vmx, vmy);
+  }
+  constrain(g, c, n, vx, vy);
   constrain(g, c, n, vmx, vmy);
   g.v0x[n] = v0x;
   g.v0y[n] = v0y;
@@ -183,6 +260,8 @@ RUNOUT_HD inline void remap_velocity(const GridView& g, int n, const StepConfig&
     return;
   }
   double vx = g.px[n] / m, vy = g.py[n] / m;
+  double nx, ny;
+  if (base_contact_normal(g, c, n, nx, ny)) contact_kinematics(c, nx, ny, vx, vy);
   constrain(g, c, n, vx, vy);
   g.vx[n] = vx;
   g.vy[n] = vy;
@@ -191,9 +270,11 @@ RUNOUT_HD inline void remap_velocity(const GridView& g, int n, const StepConfig&
 // Stage 6. Velocity gradient L_ab = sum_i v_ia dN_i/dx_b from the remapped
 // velocity; volume by J = det(I + dt L); stress rotated with the spin
 // W = skew(L) (Jaumann rate) and then updated by the material with the
-// strain increment dt sym(L). gamma_dot = sqrt(2 e:e), e the deviator of
-// D = sym(L) with D_zz = 0 (plane strain): the engineering shear strain
-// rate, equal to |dv_x/dy| in simple shear. Returns the particle's P-wave
+// strain increment dt sym(L). gamma_dot = sqrt((D_xx - D_yy)^2 + 4 D_xy^2),
+// D = sym(L): the largest in-plane engineering shear strain rate (twice the
+// radius of the in-plane Mohr circle of D), the rate conjugate to the
+// Tresca shear stress; |dv_x/dy| in simple shear, and equal to
+// sqrt(2 e:e) (e the deviator of D, D_zz = 0) for isochoric flow. Returns the particle's P-wave
 // speed plus its speed, for the CFL condition of the next step.
 RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Stencil2D& st,
                                       const GridView& g, const MaterialParams* materials,
@@ -214,9 +295,7 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Stenci
                  sxy + w * (syy - sxx) * dt, P.szz[p], P.xi[p], P.su[p]};
 
   const double Dxy = 0.5 * (Lxy + Lyx);
-  const double mean = (Lxx + Lyy) / 3.0;
-  const double exx = Lxx - mean, eyy = Lyy - mean, ezz = -mean;
-  const double gamma_dot = std::sqrt(2.0 * (exx * exx + eyy * eyy + ezz * ezz + 2.0 * Dxy * Dxy));
+  const double gamma_dot = std::sqrt((Lxx - Lyy) * (Lxx - Lyy) + 4.0 * Dxy * Dxy);
   const MaterialParams& mat = materials[P.material[p]];
   update_stress(mat, StrainIncrement{dt * Lxx, dt * Lyy, dt * Dxy, gamma_dot, dt}, sp);
 
