@@ -151,13 +151,27 @@ TEST_P(Readback, FrameReadsBackExactly) {
   const auto [n, compress] = GetParam();
   const Particles p = random_particles(n);
   const fs::path file = dir_ / "frame_00000.vtu";
-  write_particles_vtu(file, p, 12.375, compress);
+  const FrameInfo info{12.375, 0.125, {-5.0, 3.0, 0.0, 0.0, 40.0, -0.7}};
+  write_particles_vtu(file, p, info, compress);
 
   vtkNew<vtkXMLUnstructuredGridReader> reader;
   reader->SetFileName(file.c_str());
   reader->Update();
   EXPECT_EQ(reader->GetErrorCode(), 0);
   expect_frame(reader->GetOutput(), p, 12.375);
+
+  vtkFieldData* field = reader->GetOutput()->GetFieldData();
+  vtkDataArray* spacing = field->GetArray("particle_spacing");
+  ASSERT_NE(spacing, nullptr);
+  EXPECT_EQ(spacing->GetTuple1(0), 0.125);
+  vtkDataArray* base = field->GetArray("base_points");
+  ASSERT_NE(base, nullptr);
+  ASSERT_EQ(base->GetNumberOfTuples(), 3);
+  ASSERT_EQ(base->GetNumberOfComponents(), 3);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(base->GetComponent(k, 0), info.base_xy[2 * k]);
+    EXPECT_EQ(base->GetComponent(k, 1), info.base_xy[2 * k + 1]);
+  }
 }
 
 // 300: one zlib block per array; 1500: several, the last partial; 4096:
@@ -176,7 +190,7 @@ TEST(ReadbackSeries, PvdReaderSeesEveryFrameAtItsTime) {
   for (std::size_t k = 0; k < times.size(); ++k) {
     frames.push_back(random_particles(200 + 10 * static_cast<int>(k)));
     const std::string name = "frame_0000" + std::to_string(k) + ".vtu";
-    write_particles_vtu(dir / name, frames.back(), times[k], k % 2 == 0);
+    write_particles_vtu(dir / name, frames.back(), FrameInfo{times[k], 0.0, {}}, k % 2 == 0);
     index.add(times[k], name);
   }
 

@@ -76,6 +76,7 @@ int run(const Scene& s, const std::string& out, bool quiet) {
   std::printf("%s: %d particles, %ld steps to t = %.4g s in %.2f s (%.3g particle-steps/s, %d threads)\n",
               s.name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds, rate,
               omp_get_max_threads());
+  if (r.at_rest) std::printf("the slide came to rest at t = %.4g s\n", r.end_time);
   std::printf("output: %s (%d frames)\n", r.pvd_path.c_str(), r.frames);
   if (r.failed) {
     std::cerr << "runout: run stopped: " << r.failure << "\nrunout: the " << r.frames

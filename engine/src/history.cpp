@@ -9,17 +9,26 @@ namespace runout {
 HistoryWriter::HistoryWriter(const std::string& path)
     : path_(path), file_(std::fopen(path.c_str(), "w")) {
   if (!file_) throw std::runtime_error("cannot write '" + path + "'");
-  std::fputs("time,step,dt,kinetic_energy,momentum_x,momentum_y,max_speed\n", file_);
+  std::fputs(
+      "time,step,dt,toe,toe_velocity,runout,rear,length,max_thickness,centroid_x,centroid_y,"
+      "centroid_s,centroid_velocity,max_speed,kinetic_energy,basal_shear_force,outside_mass,"
+      "momentum_x,momentum_y\n",
+      file_);
   std::fflush(file_);
 }
 
 HistoryWriter::~HistoryWriter() { std::fclose(file_); }
 
-void HistoryWriter::append(const Simulation& sim) {
+void HistoryWriter::append(const Simulation& sim, const SlideMorphology& m, double runout) {
   const ParticleTotals t = particle_totals(sim.particles());
-  const int ok = std::fprintf(file_, "%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", sim.time(),
-                              sim.steps(), sim.last_dt(), t.kinetic_energy, t.momentum_x,
-                              t.momentum_y, t.max_speed);
+  const int ok = std::fprintf(
+      file_,
+      "%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+      "%.17g,%.17g,%.17g,%.17g,%.17g\n",
+      sim.time(), sim.steps(), sim.last_dt(), m.toe_s, m.toe_velocity, runout, m.rear_s,
+      m.length, m.max_thickness, m.centroid_x, m.centroid_y, m.centroid_s,
+      m.centroid_velocity_s, m.max_speed, m.kinetic_energy, sim.basal_shear_force(),
+      m.outside_mass, t.momentum_x, t.momentum_y);
   if (ok < 0 || std::fflush(file_) != 0) throw std::runtime_error("cannot write '" + path_ + "'");
 }
 

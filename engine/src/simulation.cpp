@@ -69,7 +69,8 @@ Simulation::Simulation(const Scene& scene, Particles particles)
       domain_min_(scene.grid.min),
       domain_max_(scene.grid.max),
       h_(scene.grid.cell_size),
-      courant_(scene.time.courant) {
+      courant_(scene.time.courant),
+      spacing_(scene.grid.cell_size / scene.grid.ppc) {
   config_ = make_config(scene, materials_);
   config_.base = base_.view();
   const int n = particles_.size();

@@ -123,7 +123,7 @@ double max_shear_stress(const Particles& p, int i) {
 }  // namespace
 
 void write_particles_vtu(const std::string& path, const Particles& p,
-                         double time, bool compress) {
+                         const FrameInfo& info, bool compress) {
   static_assert(sizeof(int) == sizeof(std::int32_t), "body and material ids are written as Int32");
   const int n = p.size();
 
@@ -133,7 +133,16 @@ void write_particles_vtu(const std::string& path, const Particles& p,
       "byte_order=\"LittleEndian\" header_type=\"UInt64\"";
   if (compress) xml += " compressor=\"vtkZLibDataCompressor\"";
   xml += ">\n  <UnstructuredGrid>\n    <FieldData>\n";
-  append_array(xml, "      ", "TimeValue", 1, std::vector<double>{time}, compress);
+  append_array(xml, "      ", "TimeValue", 1, std::vector<double>{info.time}, compress);
+  if (info.particle_spacing > 0)
+    append_array(xml, "      ", "particle_spacing", 1,
+                 std::vector<double>{info.particle_spacing}, compress);
+  if (!info.base_xy.empty()) {
+    const int points = static_cast<int>(info.base_xy.size() / 2);
+    append_array(xml, "      ", "base_points", 3, tuples<3>(points, [&](int i) {
+                   return std::array<double, 3>{info.base_xy[2 * i], info.base_xy[2 * i + 1], 0.0};
+                 }), compress);
+  }
   xml += "    </FieldData>\n    <Piece NumberOfPoints=\"" + std::to_string(n) +
          "\" NumberOfCells=\"" + std::to_string(n) + "\">\n      <PointData>\n";
 

@@ -1,9 +1,11 @@
 #pragma once
 // history.csv: one row per history time, appended and flushed as the run
-// goes, so a killed run keeps every row it computed.
+// goes, so a killed run keeps every row it computed. Columns in
+// docs/output.md; the morphology ones are defined in docs/morphology.md.
 #include <cstdio>
 #include <string>
 
+#include "runout/morphology.hpp"
 #include "runout/simulation.hpp"
 
 namespace runout {
@@ -15,7 +17,8 @@ class HistoryWriter {
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
 
-  void append(const Simulation& sim);
+  // runout: toe displacement along the base since t = 0.
+  void append(const Simulation& sim, const SlideMorphology& shape, double runout);
 
  private:
   std::string path_;

@@ -26,11 +26,12 @@ struct RunSummary {
   double end_time = 0;
   double wall_seconds = 0;
   std::string pvd_path;
+  bool at_rest = false;  // ended by the scene's at-rest criterion
   bool failed = false;
   std::string failure;  // the NumericalFailure message when failed
 };
 
-// Runs to scene.time.end. A numerical failure ends the run early with
+// Runs to scene.time.end or until at rest. A numerical failure ends the run early with
 // failed = true: every frame and history row written before it stays, and
 // the index lists only those frames. Throws std::runtime_error when the
 // output cannot be written.

@@ -47,6 +47,7 @@ class Simulation {
   // [N per metre out of plane]; negative while it resists.
   double basal_shear_force() const { return basal_shear_force_; }
   const Base& base() const { return base_; }
+  double particle_spacing() const { return spacing_; }  // h / ppc
   Particles& particles() { return particles_; }
   const Particles& particles() const { return particles_; }
   const Grid& grid() const { return grid_; }
@@ -70,7 +71,7 @@ class Simulation {
   std::vector<int> block_start_, order_, particle_block_, scratch_next_;
   int blocks_x_ = 0, blocks_y_ = 0;
   Eigen::Vector2d domain_min_, domain_max_;
-  double h_, courant_;
+  double h_, courant_, spacing_;
   double max_signal_speed_ = 0;
   double time_ = 0, last_dt_ = 0, basal_shear_force_ = 0;
   long steps_ = 0;

@@ -12,11 +12,19 @@
 
 namespace runout {
 
+// What a frame carries besides the particles, as field data, so that the
+// ParaView filters can measure along the base without the scene file.
+struct FrameInfo {
+  double time = 0;              // TimeValue
+  double particle_spacing = 0;  // h / ppc: particle_spacing (omitted when 0)
+  std::vector<double> base_xy;  // the base as a polyline x0, y0, x1, y1, ...:
+                                // base_points (omitted when empty)
+};
+
 // One frame: every particle field, plus displacement, the stress tensor and
-// its mean and deviatoric invariants (see docs/output.md). time goes into
-// the field data as TimeValue.
+// its mean and deviatoric invariants (see docs/output.md).
 void write_particles_vtu(const std::string& path, const Particles& particles,
-                         double time, bool compress);
+                         const FrameInfo& info, bool compress);
 
 // The .pvd index of a frame series. add() appends a frame and rewrites the
 // index atomically, so the index on disk always lists whole frames only.
