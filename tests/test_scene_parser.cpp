@@ -439,6 +439,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.solver.flip, b.solver.flip);
   EXPECT_EQ(a.solver.mass_threshold, b.solver.mass_threshold);
   EXPECT_EQ(a.solver.damping, b.solver.damping);
+  EXPECT_EQ(a.solver.volumetric_smoothing, b.solver.volumetric_smoothing);
   ASSERT_EQ(a.materials.size(), b.materials.size());
   for (std::size_t i = 0; i < a.materials.size(); ++i) {
     EXPECT_EQ(a.materials[i].name, b.materials[i].name);

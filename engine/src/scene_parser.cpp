@@ -356,12 +356,13 @@ GravitySpec read_gravity(TableReader r) {
 }
 
 SolverSpec read_solver(TableReader r) {
-  r.check_keys({"flip", "mass_threshold", "damping"});
+  r.check_keys({"flip", "mass_threshold", "damping", "volumetric_smoothing"});
   SolverSpec solver;
   if (auto v = r.find("flip")) solver.flip = v->number(between(0, 1, "[]"));
   if (auto v = r.find("mass_threshold"))
     solver.mass_threshold = v->number(between(0, 1, "[)"));
   if (auto v = r.find("damping")) solver.damping = v->number(between(0, 1, "[)"));
+  if (auto v = r.find("volumetric_smoothing")) solver.volumetric_smoothing = v->boolean();
   return solver;
 }
 

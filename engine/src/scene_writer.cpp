@@ -160,7 +160,9 @@ std::string to_toml(const Scene& scene) {
   out << "\n[solver]\n"
       << "flip = " << number(scene.solver.flip) << "\n"
       << "mass_threshold = " << number(scene.solver.mass_threshold) << "\n"
-      << "damping = " << number(scene.solver.damping) << "\n\n";
+      << "damping = " << number(scene.solver.damping) << "\n"
+      << "volumetric_smoothing = " << (scene.solver.volumetric_smoothing ? "true" : "false")
+      << "\n\n";
 
   for (const MaterialSpec& m : scene.materials) write_material(out, m);
   for (const BodySpec& body : scene.bodies) write_body(out, body, scene.materials);

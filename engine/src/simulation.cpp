@@ -70,14 +70,17 @@ Simulation::Simulation(const Scene& scene, Particles particles)
       domain_max_(scene.grid.max),
       h_(scene.grid.cell_size),
       courant_(scene.time.courant),
-      spacing_(scene.grid.cell_size / scene.grid.ppc) {
+      spacing_(scene.grid.cell_size / scene.grid.ppc),
+      smooth_volumetric_(scene.solver.volumetric_smoothing) {
   config_ = make_config(scene, materials_);
   config_.base = base_.view();
   const int n = particles_.size();
   scratch_dx_.assign(n, 0.0);
   scratch_dy_.assign(n, 0.0);
   particle_block_.assign(n, 0);
+  particle_cell_.assign(n, 0);
   stencils_.resize(n);
+  gradients_.resize(n);
   order_.assign(n, 0);
   const ParticleView P = particles_.view();
   double smax = 0;
@@ -127,6 +130,7 @@ void Simulation::bin_particles() {
     const int ci = static_cast<int>(std::floor((P.x[p] - g.ox) / g.h));
     const int cj = static_cast<int>(std::floor((P.y[p] - g.oy) / g.h));
     particle_block_[p] = (cj / kBlock) * blocks_x_ + ci / kBlock;
+    particle_cell_[p] = cj * cells_x + ci;
     make_stencil(g, config_, P.x[p], P.y[p], stencils_[p]);
   }
   // Stable counting sort: within a block particles keep their index order,
@@ -150,6 +154,48 @@ void Simulation::scatter(Stage&& stage) {
       const int b = (cy + 2 * (k / nbx)) * blocks_x_ + cx + 2 * (k % nbx);
       for (int q = block_start_[b]; q < block_start_[b + 1]; ++q) stage(order_[q], add);
     }
+  }
+}
+
+template <class Value>
+void Simulation::cell_means(Value&& value) {
+  const GridView& g = grid_.view();
+  const ParticleView P = particles_.view();
+  const int cells = (g.nx - 1) * (g.ny - 1);
+  cell_volume_.assign(cells, 0.0);
+  cell_mean_.assign(cells, 0.0);
+  // A cell's particles all lie in one block, so blocks never share a cell.
+  const int blocks = blocks_x_ * blocks_y_;
+#pragma omp parallel for schedule(dynamic, 1) if (P.n > kParallelMin)
+  for (int b = 0; b < blocks; ++b) {
+    for (int q = block_start_[b]; q < block_start_[b + 1]; ++q) {
+      const int p = order_[q], c = particle_cell_[p];
+      cell_volume_[c] += P.vol[p];
+      cell_mean_[c] += P.vol[p] * value(p);
+    }
+  }
+#pragma omp parallel for if (cells > kParallelMin)
+  for (int c = 0; c < cells; ++c)
+    if (cell_volume_[c] > 0.0) cell_mean_[c] /= cell_volume_[c];
+}
+
+void Simulation::smooth_volumetric_rates() {
+  VelocityGradient* L = gradients_.data();
+  cell_means([L](int p) { return L[p].xx + L[p].yy; });
+#pragma omp parallel for if (particles_.size() > kParallelMin)
+  for (int p = 0; p < particles_.size(); ++p)
+    set_volumetric_rate(L[p], cell_mean_[particle_cell_[p]]);
+}
+
+void Simulation::smooth_mean_stress() {
+  const ParticleView P = particles_.view();
+  cell_means([P](int p) { return (P.sxx[p] + P.syy[p] + P.szz[p]) / 3.0; });
+#pragma omp parallel for if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) {
+    const double shift = cell_mean_[particle_cell_[p]] - (P.sxx[p] + P.syy[p] + P.szz[p]) / 3.0;
+    P.sxx[p] += shift;
+    P.syy[p] += shift;
+    P.szz[p] += shift;
   }
 }
 
@@ -178,18 +224,24 @@ void Simulation::step(double dt) {
 #pragma omp parallel for if (nodes > kParallelMin)
   for (int n = 0; n < nodes; ++n) remap_velocity(g, n, c);
 
+  VelocityGradient* L = gradients_.data();
+#pragma omp parallel for if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) L[p] = velocity_gradient(st[p], g);
+  if (smooth_volumetric_) smooth_volumetric_rates();
+
   double smax = 0;
   int bad = 0;
   const MaterialParams* mats = materials_.data();
 #pragma omp parallel for reduction(max : smax) reduction(+ : bad) if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) {
-    const double sp = stress_update(P, p, st[p], g, mats, dt, s);
+    const double sp = stress_update(P, p, L[p], mats, dt, s);
     if (std::isfinite(sp)) {
       smax = std::max(smax, sp);
     } else {
       ++bad;
     }
   }
+  if (smooth_volumetric_) smooth_mean_stress();
   if (bad > 0) {
     std::ostringstream msg;
     msg << "numerical blow-up at step " << steps_ << " (t = " << time_ << " s, dt = " << dt

@@ -46,6 +46,7 @@ struct SolverSpec {
   double flip = 0.99;             // PIC/FLIP blend: 1 pure FLIP, 0 pure PIC
   double mass_threshold = 1e-9;   // nodes lighter than this fraction of a full cell's mass are not accelerated
   double damping = 0.0;           // Cundall local non-viscous damping coefficient, 0..1
+  bool volumetric_smoothing = true;  // cell-averaged volumetric strain rate (anti-locking)
 };
 
 struct MaterialSpec {

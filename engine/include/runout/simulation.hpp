@@ -58,7 +58,12 @@ class Simulation {
   void bin_particles();  // and computes the particles' stencils
   template <class Stage>
   void scatter(Stage&& stage);
-  void check_state(double max_speed);
+  // Volume-weighted mean of value(p) over the particles of each grid cell,
+  // into cell_mean_.
+  template <class Value>
+  void cell_means(Value&& value);
+  void smooth_volumetric_rates();
+  void smooth_mean_stress();
 
   Particles particles_;
   Base base_;
@@ -67,11 +72,14 @@ class Simulation {
   std::vector<MaterialParams> materials_;
   std::vector<double> scratch_dx_, scratch_dy_;
   std::vector<Stencil2D> stencils_;
+  std::vector<VelocityGradient> gradients_;
+  std::vector<double> cell_volume_, cell_mean_;  // per cell of the grid box
   // Particles grouped by block of kBlock x kBlock cells (counting sort).
-  std::vector<int> block_start_, order_, particle_block_, scratch_next_;
+  std::vector<int> block_start_, order_, particle_block_, particle_cell_, scratch_next_;
   int blocks_x_ = 0, blocks_y_ = 0;
   Eigen::Vector2d domain_min_, domain_max_;
   double h_, courant_, spacing_;
+  bool smooth_volumetric_;
   double max_signal_speed_ = 0;
   double time_ = 0, last_dt_ = 0, basal_shear_force_ = 0;
   long steps_ = 0;

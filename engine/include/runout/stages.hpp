@@ -11,7 +11,8 @@
 //   3. g2p:            v_p += FLIP/PIC blend; step displacement dt * sum N vmid
 //   4. p2g_momentum:   p_i = sum N m v_p(new)            (the MUSL remap)
 //   5. remap_velocity: v_i = p_i/m_i, boundary conditions
-//   6. stress_update:  L = sum v_i (x) grad N, volume, Jaumann stress; then move
+//   6. stress_update:  L = sum v_i (x) grad N (its volumetric part averaged per
+//                      cell against locking), volume, Jaumann stress; then move
 // MUSL rather than USL because the stress is computed from the remapped
 // velocity: at nodes with a tiny share of mass (free surface, a particle
 // entering a cell) v0 + dt f/m is spurious, and USL turns it into stress.
@@ -267,37 +268,63 @@ RUNOUT_HD inline void remap_velocity(const GridView& g, int n, const StepConfig&
   g.vy[n] = vy;
 }
 
-// Stage 6. Velocity gradient L_ab = sum_i v_ia dN_i/dx_b from the remapped
-// velocity; volume by J = det(I + dt L); stress rotated with the spin
+// Velocity gradient L_ab = sum_i v_ia dN_i/dx_b.
+struct VelocityGradient {
+  double xx, xy, yx, yy;
+};
+
+// Stage 6a: L from the remapped velocity.
+RUNOUT_HD inline VelocityGradient velocity_gradient(const Stencil2D& st, const GridView& g) {
+  VelocityGradient L{0, 0, 0, 0};
+  for_each_node(g, st, [&](int n, double, double dNx, double dNy) {
+    L.xx += g.vx[n] * dNx;
+    L.xy += g.vx[n] * dNy;
+    L.yx += g.vy[n] * dNx;
+    L.yy += g.vy[n] * dNy;
+  });
+  return L;
+}
+
+// Stage 6b (optional): volumetric locking relief. Undrained clay is nearly
+// incompressible (nu = 0.49) and its plastic flow is isochoric; with shape
+// functions linear in a cell, every particle's volumetric strain rate
+// cannot vanish independently, the mesh locks and the slide is too stiff
+// (a vertical cut at 1.4 Hc slumps half as far at 10 cells over its height).
+// The driver replaces each particle's volumetric rate tr L by the
+// volume-weighted mean of its cell, and after the stress update its mean
+// stress by the cell's mean: one volumetric constraint and one pressure per
+// cell, as in mixed (B-bar, Hughes 1980) elements and their MPM forms (Mast
+// et al. 2012; Coombs et al. 2018). The deviatoric parts are untouched.
+RUNOUT_HD inline void set_volumetric_rate(VelocityGradient& L, double trace) {
+  const double shift = 0.5 * (trace - (L.xx + L.yy));
+  L.xx += shift;
+  L.yy += shift;
+}
+
+// Stage 6c. Volume by J = det(I + dt L); stress rotated with the spin
 // W = skew(L) (Jaumann rate) and then updated by the material with the
 // strain increment dt sym(L). gamma_dot = sqrt((D_xx - D_yy)^2 + 4 D_xy^2),
 // D = sym(L): the largest in-plane engineering shear strain rate (twice the
 // radius of the in-plane Mohr circle of D), the rate conjugate to the
 // Tresca shear stress; |dv_x/dy| in simple shear, and equal to
-// sqrt(2 e:e) (e the deviator of D, D_zz = 0) for isochoric flow. Returns the particle's P-wave
-// speed plus its speed, for the CFL condition of the next step.
-RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Stencil2D& st,
-                                      const GridView& g, const MaterialParams* materials,
-                                      double dt, const StepScratch& s) {
-  double Lxx = 0, Lxy = 0, Lyx = 0, Lyy = 0;
-  for_each_node(g, st, [&](int n, double, double dNx, double dNy) {
-    Lxx += g.vx[n] * dNx;
-    Lxy += g.vx[n] * dNy;
-    Lyx += g.vy[n] * dNx;
-    Lyy += g.vy[n] * dNy;
-  });
-  const double J = (1.0 + dt * Lxx) * (1.0 + dt * Lyy) - dt * dt * Lxy * Lyx;
+// sqrt(2 e:e) (e the deviator of D, D_zz = 0) for isochoric flow. Then the
+// particle moves. Returns its P-wave speed plus its speed, for the CFL
+// condition of the next step.
+RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const VelocityGradient& L,
+                                      const MaterialParams* materials, double dt,
+                                      const StepScratch& s) {
+  const double J = (1.0 + dt * L.xx) * (1.0 + dt * L.yy) - dt * dt * L.xy * L.yx;
   P.vol[p] *= J;
 
-  const double w = 0.5 * (Lxy - Lyx);  // spin W_xy
+  const double w = 0.5 * (L.xy - L.yx);  // spin W_xy
   const double sxx = P.sxx[p], syy = P.syy[p], sxy = P.sxy[p];
   StressPoint sp{sxx + 2.0 * w * sxy * dt, syy - 2.0 * w * sxy * dt,
                  sxy + w * (syy - sxx) * dt, P.szz[p], P.xi[p], P.su[p]};
 
-  const double Dxy = 0.5 * (Lxy + Lyx);
-  const double gamma_dot = std::sqrt((Lxx - Lyy) * (Lxx - Lyy) + 4.0 * Dxy * Dxy);
+  const double Dxy = 0.5 * (L.xy + L.yx);
+  const double gamma_dot = std::sqrt((L.xx - L.yy) * (L.xx - L.yy) + 4.0 * Dxy * Dxy);
   const MaterialParams& mat = materials[P.material[p]];
-  update_stress(mat, StrainIncrement{dt * Lxx, dt * Lyy, dt * Dxy, gamma_dot, dt}, sp);
+  update_stress(mat, StrainIncrement{dt * L.xx, dt * L.yy, dt * Dxy, gamma_dot, dt}, sp);
 
   P.sxx[p] = sp.sxx;
   P.syy[p] = sp.syy;
