@@ -12,7 +12,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <vector>
 
 #include "runout/diagnostics.hpp"
@@ -25,9 +24,7 @@ using namespace runout;
 namespace {
 
 Scene coarse(const std::string& name, double cell = 1.0) {
-  const char* root = std::getenv("RUNOUT_SOURCE_DIR");
-  EXPECT_NE(root, nullptr) << "RUNOUT_SOURCE_DIR is set by ctest";
-  Scene s = load_scene_file(std::string(root) + "/scenes/" + name + ".toml");
+  Scene s = load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/" + name + ".toml");
   apply_overrides(s, cell, 2);
   return s;
 }

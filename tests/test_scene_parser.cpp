@@ -70,15 +70,19 @@ std::string replace_lines(int first, int last, const std::string& text) {
 TEST(SceneParser, DefaultSceneParses) {
   const Scene s = default_scene();
   EXPECT_EQ(s.name, "default");
-  EXPECT_DOUBLE_EQ(s.grid.cell_size, 0.25);
+  EXPECT_DOUBLE_EQ(s.grid.cell_size, 0.4);
   EXPECT_EQ(s.grid.min, Eigen::Vector2d(-2.0, 0.0));
   EXPECT_EQ(s.grid.max, Eigen::Vector2d(400.0, 10.0));
   EXPECT_EQ(s.grid.shape, ShapeKind::Gimp);
   EXPECT_EQ(s.grid.ppc, 2);
-  EXPECT_EQ(s.boundary.bottom, BoundaryKind::Slip);
+  EXPECT_EQ(s.boundary.bottom, BoundaryKind::Free);  // the base is the bottom
   EXPECT_EQ(s.boundary.top, BoundaryKind::Free);
-  EXPECT_DOUBLE_EQ(s.time.end, 20.0);
-  EXPECT_DOUBLE_EQ(s.time.output_interval, 0.5);
+  EXPECT_EQ(s.base.kind, BaseKind::Planar);
+  EXPECT_EQ(s.base.interface, InterfaceKind::Frictional);
+  EXPECT_DOUBLE_EQ(s.base.shear_strength, 1000.0);
+  EXPECT_DOUBLE_EQ(s.time.end, 60.0);
+  EXPECT_DOUBLE_EQ(s.time.output_interval, 1.0);
+  EXPECT_DOUBLE_EQ(s.time.rest_fraction, 1e-3);
   EXPECT_DOUBLE_EQ(s.gravity.slope_angle_deg, 5.0);
   const double theta = 5.0 * kPi / 180.0;
   EXPECT_NEAR(s.gravity.vector.x(), 9.81 * std::sin(theta), 1e-12);
@@ -88,6 +92,8 @@ TEST(SceneParser, DefaultSceneParses) {
   EXPECT_DOUBLE_EQ(s.materials[0].density, 600.0);
   EXPECT_DOUBLE_EQ(s.materials[0].youngs_modulus, 250.0e3);
   EXPECT_DOUBLE_EQ(s.materials[0].poisson_ratio, 0.49);
+  EXPECT_EQ(s.materials[0].model, MaterialModel::Tresca);
+  EXPECT_DOUBLE_EQ(s.materials[0].su0, 2500.0);
   ASSERT_EQ(s.bodies.size(), 1u);
   EXPECT_EQ(s.bodies[0].material, 0);
   ASSERT_EQ(s.bodies[0].polygon.size(), 4u);
@@ -518,10 +524,12 @@ TEST(SceneWriter, PlanarBaseAndTrescaDefaultsRoundTrip) {
 
 TEST(SceneWriter, OverridesAreRecordedAndChecked) {
   Scene s = default_scene();
-  apply_overrides(s, 0.4, 3);
+  apply_overrides(s, 0.4, 3, 7.5);
   EXPECT_EQ(s.grid.cell_size, 0.4);
   EXPECT_EQ(s.grid.ppc, 3);
-  EXPECT_EQ(s.overrides, (std::vector<std::string>{"grid.cell_size = 0.4", "grid.ppc = 3"}));
+  EXPECT_EQ(s.time.end, 7.5);
+  EXPECT_EQ(s.overrides, (std::vector<std::string>{"grid.cell_size = 0.4", "grid.ppc = 3",
+                                                   "time.end = 7.5"}));
   // The old max need not lie on a node of the new grid, so it must have moved to one.
   const double cells = (s.grid.max.x() - s.grid.min.x()) / s.grid.cell_size;
   EXPECT_NEAR(cells, std::round(cells), 1e-9);
@@ -529,12 +537,15 @@ TEST(SceneWriter, OverridesAreRecordedAndChecked) {
   struct Bad {
     std::optional<double> cell;
     std::optional<int> ppc;
+    std::optional<double> end;
     std::string flag;
   };
-  for (const Bad& bad : {Bad{0.0, {}, "--cell"}, Bad{-1.0, {}, "--cell"},
-                         Bad{{}, 0, "--ppc"}, Bad{{}, 17, "--ppc"}}) {
+  // An end before the first output interval would leave no frame to write.
+  for (const Bad& bad : {Bad{0.0, {}, {}, "--cell"}, Bad{-1.0, {}, {}, "--cell"},
+                         Bad{{}, 0, {}, "--ppc"}, Bad{{}, 17, {}, "--ppc"},
+                         Bad{{}, {}, 0.5 * s.time.output_interval, "--end"}}) {
     try {
-      apply_overrides(s, bad.cell, bad.ppc);
+      apply_overrides(s, bad.cell, bad.ppc, bad.end);
       FAIL() << "no error for " << bad.flag;
     } catch (const SceneError& e) {
       EXPECT_EQ(e.line(), 0);

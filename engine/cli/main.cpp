@@ -24,18 +24,20 @@ struct SceneArgs {
   std::string path;  // empty: the built-in default scene
   std::optional<double> cell;
   std::optional<int> ppc;
+  std::optional<double> end;
 };
 
 void add_scene_args(CLI::App* cmd, SceneArgs& a) {
   cmd->add_option("scene", a.path, "Scene file (TOML); the built-in default scene if omitted");
   cmd->add_option("--cell", a.cell, "Override the cell size h [m]");
   cmd->add_option("--ppc", a.ppc, "Override the particles per cell per direction");
+  cmd->add_option("--end", a.end, "Override the end time [s]");
 }
 
 Scene load(const SceneArgs& a) {
   Scene s = a.path.empty() ? parse_scene(default_scene_toml(), "default.toml")
                            : load_scene_file(a.path);
-  apply_overrides(s, a.cell, a.ppc);
+  apply_overrides(s, a.cell, a.ppc, a.end);
   return s;
 }
 

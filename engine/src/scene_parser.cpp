@@ -639,8 +639,8 @@ Scene load_scene_file(const std::string& path) {
   return parse_scene(text, path);
 }
 
-void apply_overrides(Scene& scene, std::optional<double> cell_size,
-                     std::optional<int> ppc) {
+void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optional<int> ppc,
+                     std::optional<double> end_time) {
   if (cell_size) {
     check_override("--cell", *cell_size, above(0.0));
     scene.grid.cell_size = *cell_size;
@@ -651,6 +651,11 @@ void apply_overrides(Scene& scene, std::optional<double> cell_size,
     check_override("--ppc", *ppc, kPpcRange);
     scene.grid.ppc = *ppc;
     scene.overrides.push_back("grid.ppc = " + std::to_string(*ppc));
+  }
+  if (end_time) {
+    check_override("--end", *end_time, at_least(scene.time.output_interval));
+    scene.time.end = *end_time;
+    scene.overrides.push_back("time.end = " + format_number(*end_time));
   }
 }
 

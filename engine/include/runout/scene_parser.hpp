@@ -41,9 +41,9 @@ std::string to_toml(const Scene& scene);
 // The built-in default scene (scenes/default.toml embedded at build time).
 std::string_view default_scene_toml();
 
-// Command-line overrides (--cell, --ppc); each one is recorded in
+// Command-line overrides (--cell, --ppc, --end); each one is recorded in
 // scene.overrides. Throws SceneError for an impossible value.
-void apply_overrides(Scene& scene, std::optional<double> cell_size,
-                     std::optional<int> ppc);
+void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optional<int> ppc,
+                     std::optional<double> end_time = std::nullopt);
 
 }  // namespace runout
