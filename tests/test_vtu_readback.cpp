@@ -151,7 +151,15 @@ TEST_P(Readback, FrameReadsBackExactly) {
   const auto [n, compress] = GetParam();
   const Particles p = random_particles(n);
   const fs::path file = dir_ / "frame_00000.vtu";
-  const FrameInfo info{12.375, 0.125, {-5.0, 3.0, 0.0, 0.0, 40.0, -0.7}};
+  // Three materials (material ids are i % 3): no rate effect, and two rate laws.
+  StrengthParams fast, slow;
+  fast.eta = 1.0;
+  fast.rate_exponent = 0.1;
+  fast.reference_rate = 0.01;
+  slow.eta = 0.0167;
+  slow.rate_exponent = 0.5;
+  const FrameInfo info{12.375, 0.125, {-5.0, 3.0, 0.0, 0.0, 40.0, -0.7},
+                       {StrengthParams{}, fast, slow}};
   write_particles_vtu(file, p, info, compress);
 
   vtkNew<vtkXMLUnstructuredGridReader> reader;
@@ -159,6 +167,11 @@ TEST_P(Readback, FrameReadsBackExactly) {
   reader->Update();
   EXPECT_EQ(reader->GetErrorCode(), 0);
   expect_frame(reader->GetOutput(), p, 12.375);
+
+  vtkDataArray* rate = reader->GetOutput()->GetPointData()->GetArray("rate_factor");
+  ASSERT_NE(rate, nullptr);
+  for (int i = 0; i < p.size(); ++i)
+    EXPECT_EQ(rate->GetTuple1(i), rate_factor(info.strengths[p.material[i]], p.gamma_dot[i]));
 
   vtkFieldData* field = reader->GetOutput()->GetFieldData();
   vtkDataArray* spacing = field->GetArray("particle_spacing");
@@ -190,7 +203,7 @@ TEST(ReadbackSeries, PvdReaderSeesEveryFrameAtItsTime) {
   for (std::size_t k = 0; k < times.size(); ++k) {
     frames.push_back(random_particles(200 + 10 * static_cast<int>(k)));
     const std::string name = "frame_0000" + std::to_string(k) + ".vtu";
-    write_particles_vtu(dir / name, frames.back(), FrameInfo{times[k], 0.0, {}}, k % 2 == 0);
+    write_particles_vtu(dir / name, frames.back(), FrameInfo{times[k], 0.0, {}, {}}, k % 2 == 0);
     index.add(times[k], name);
   }
 

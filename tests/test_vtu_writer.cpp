@@ -199,7 +199,7 @@ TEST_F(OutputFiles, AtomicWriteFailureNamesThePathAndCleansUp) {
 TEST_F(OutputFiles, VtuHasEveryArrayInlineBinary) {
   for (const bool compress : {false, true}) {
     const fs::path file = dir_ / "frame.vtu";
-    write_particles_vtu(file, sample_particles(7), FrameInfo{1.25, 0.0, {}}, compress);
+    write_particles_vtu(file, sample_particles(7), FrameInfo{1.25, 0.0, {}, {}}, compress);
     const std::string xml = read_text(file);
     EXPECT_EQ(xml.find("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" "
                        "version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\""),
@@ -228,7 +228,7 @@ TEST_F(OutputFiles, UncompressedArraysDecodeToTheWrittenValues) {
   const int n = 7;
   const Particles p = sample_particles(n);
   const fs::path file = dir_ / "frame.vtu";
-  write_particles_vtu(file, p, FrameInfo{1.25, 0.0, {}}, false);
+  write_particles_vtu(file, p, FrameInfo{1.25, 0.0, {}, {}}, false);
   const std::string xml = read_text(file);
 
   EXPECT_EQ(as_values<double>(decode_raw(array_text(xml, "TimeValue"))), std::vector<double>{1.25});
@@ -249,7 +249,7 @@ TEST_F(OutputFiles, CompressedArraysDecodeBlockByBlock) {
   // 5000 doubles: two zlib blocks, the last one partial.
   const Particles p = sample_particles(5000);
   const fs::path file = dir_ / "frame.vtu";
-  write_particles_vtu(file, p, FrameInfo{0.5, 0.0, {}}, true);
+  write_particles_vtu(file, p, FrameInfo{0.5, 0.0, {}, {}}, true);
   const std::string xml = read_text(file);
   EXPECT_EQ(as_values<double>(decode_zlib(array_text(xml, "mass"))), p.mass);
   EXPECT_EQ(as_values<std::int64_t>(decode_zlib(array_text(xml, "particle_id"))), p.id);
@@ -259,7 +259,7 @@ TEST_F(OutputFiles, CompressedArraysDecodeBlockByBlock) {
 TEST_F(OutputFiles, EmptyFrameIsValid) {
   for (const bool compress : {false, true}) {
     const fs::path file = dir_ / "empty.vtu";
-    write_particles_vtu(file, Particles{}, FrameInfo{0.0, 0.0, {}}, compress);
+    write_particles_vtu(file, Particles{}, FrameInfo{0.0, 0.0, {}, {}}, compress);
     const std::string xml = read_text(file);
     EXPECT_NE(xml.find("<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\">"), std::string::npos);
     const std::string mass = array_text(xml, "mass");

@@ -90,7 +90,8 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   summary.pvd_path = (dir / (scene.name + ".pvd")).string();
   PvdIndex pvd(summary.pvd_path);
   HistoryWriter history((dir / "history.csv").string());
-  FrameInfo info{0.0, spacing, base_polyline(scene)};
+  FrameInfo info{0.0, spacing, base_polyline(scene), {}};
+  for (const MaterialParams& m : sim.materials()) info.strengths.push_back(m.strength);
 
   const auto write_frame = [&] {
     const int frame = summary.frames++;

@@ -48,6 +48,7 @@ class Simulation {
   double basal_shear_force() const { return basal_shear_force_; }
   const Base& base() const { return base_; }
   double particle_spacing() const { return spacing_; }  // h / ppc
+  const std::vector<MaterialParams>& materials() const { return materials_; }
   Particles& particles() { return particles_; }
   const Particles& particles() const { return particles_; }
   const Grid& grid() const { return grid_; }

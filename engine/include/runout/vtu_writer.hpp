@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "runout/particles.hpp"
+#include "runout/strength.hpp"
 
 namespace runout {
 
@@ -19,6 +20,9 @@ struct FrameInfo {
   double particle_spacing = 0;  // h / ppc: particle_spacing (omitted when 0)
   std::vector<double> base_xy;  // the base as a polyline x0, y0, x1, y1, ...:
                                 // base_points (omitted when empty)
+  // The strength law of each material: with it the frame carries each
+  // particle's rate factor R(gamma_dot) as rate_factor (omitted when empty).
+  std::vector<StrengthParams> strengths;
 };
 
 // One frame: every particle field, plus displacement, the stress tensor and
