@@ -1,69 +1,67 @@
-"""RunoutPlugin in headless ParaView: load it, apply Runout Distance to a
-small frame, fetch the table.
+"""RunoutPlugin in headless ParaView (pvpython or pvbatch): it loads, and
+every filter that its server-manager XML files define is in the "Runout"
+category of the loaded plugin, under the Python name ParaView gives it.
 
-Usage: pvpython plugin_loads.py <path to RunoutPlugin.so>
+Usage: pvpython|pvbatch plugin_loads.py <RunoutPlugin.so> <folder of its XML files>
 Exit code 77 (ctest SKIP_RETURN_CODE) when paraview.simple is unavailable.
 """
+import glob
 import os
+import re
 import sys
-import tempfile
-
-try:
-    from paraview import servermanager, simple
-    from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
-    from vtkmodules.vtkCommonDataModel import VTK_VERTEX, vtkUnstructuredGrid
-    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
-except ImportError as error:
-    print(f"paraview.simple is not available ({error}): skipped")
-    sys.exit(77)
+import xml.etree.ElementTree as ET
 
 
-def write_frame(path, time, x, x0):
-    grid = vtkUnstructuredGrid()
-    time_value = vtkDoubleArray()
-    time_value.SetName("TimeValue")
-    time_value.InsertNextValue(time)
-    grid.GetFieldData().AddArray(time_value)
-    points = vtkPoints()
-    initial = vtkDoubleArray()
-    initial.SetName("initial_position")
-    initial.SetNumberOfComponents(3)
-    for xi, x0i in zip(x, x0):
-        points.InsertNextPoint(xi, 0.0, 0.0)
-        initial.InsertNextTuple3(x0i, 0.0, 0.0)
-    grid.SetPoints(points)
-    for i in range(len(x)):
-        grid.InsertNextCell(VTK_VERTEX, 1, [i])
-    grid.GetPointData().AddArray(initial)
-    writer = vtkXMLUnstructuredGridWriter()
-    writer.SetInputData(grid)
-    writer.SetFileName(path)
-    writer.SetDataModeToBinary()  # inline: never appended (expat trap)
-    if not writer.Write():
-        sys.exit(f"cannot write {path}")
+def runout_filters(xml_folder):
+    """{proxy name: Python name} of every filter proxy in the XML files."""
+    filters = {}
+    for path in sorted(glob.glob(os.path.join(xml_folder, "*.xml"))):
+        for group in ET.parse(path).getroot().iter("ProxyGroup"):
+            if group.get("name") != "filters":
+                continue
+            for proxy in group.iter("SourceProxy"):
+                # ParaView names the Python function after the label, keeping
+                # only the characters valid in a Python name.
+                label = proxy.get("label", proxy.get("name"))
+                filters[proxy.get("name")] = re.sub(r"[^0-9A-Za-z_]", "", label)
+    return filters
+
+
+def loaded_runout_category(servermanager):
+    """Names of the loaded filter proxies shown in the Runout menu."""
+    definitions = servermanager.ProxyManager().GetProxyDefinitionManager()
+    it = definitions.NewSingleGroupIterator("filters")
+    names = set()
+    it.GoToFirstItem()
+    while not it.IsDoneWithTraversal():
+        hints = it.GetProxyHints()
+        menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
+        if menu is not None and menu.GetAttribute("category") == "Runout":
+            names.add(it.GetProxyName())
+        it.GoToNextItem()
+    return names
 
 
 def main():
-    plugin = sys.argv[1]
-    simple.LoadPlugin(plugin, remote=False, ns=globals())
-    if "RunoutDistance" not in globals():
-        sys.exit(f"{plugin} loaded, but no RunoutDistance filter")
+    try:
+        from paraview import servermanager, simple
+    except ImportError as error:
+        print(f"paraview.simple is not available ({error}): skipped")
+        sys.exit(77)
+    plugin, xml_folder = sys.argv[1], sys.argv[2]
+    expected = runout_filters(xml_folder)
+    if not expected:
+        sys.exit(f"no filter proxies in {xml_folder}/*.xml")
 
-    with tempfile.TemporaryDirectory() as folder:
-        frame = os.path.join(folder, "frame_00000.vtu")
-        write_frame(frame, 2.5, [1.0, 4.0, -2.0], [0.0, 3.0, -2.0])
-        reader = simple.XMLUnstructuredGridReader(FileName=[frame])
-        distance = RunoutDistance(Input=reader)  # noqa: F821 (from LoadPlugin)
-        if distance.GetXMLName() != "RunoutRunoutDistance":
-            sys.exit(f"unexpected proxy {distance.GetXMLName()}")
-        distance.UpdatePipeline()
-        table = servermanager.Fetch(distance)
-        row = {table.GetColumnName(c): table.GetValue(0, c).ToDouble()
-               for c in range(table.GetNumberOfColumns())}
-    expected = {"time": 2.5, "toe_x": 4.0, "rear_x": -2.0, "length": 6.0, "runout": 1.0}
-    if table.GetNumberOfRows() != 1 or any(row.get(k) != v for k, v in expected.items()):
-        sys.exit(f"unexpected table {row}")
-    print("RunoutPlugin OK:", row)
+    simple.LoadPlugin(plugin, remote=False)  # adds the filters' functions to simple
+    category = loaded_runout_category(servermanager)
+    if category != set(expected):
+        sys.exit(f"Runout category {sorted(category)}, the XML files define {sorted(expected)}")
+    missing = [name for name in expected.values() if not hasattr(simple, name)]
+    if missing:
+        sys.exit(f"{plugin} loaded, but without the Python functions {missing}")
+    print("RunoutPlugin OK:", ", ".join(sorted(expected.values())))
 
 
-main()
+if __name__ == "__main__":
+    main()

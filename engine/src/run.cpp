@@ -39,10 +39,11 @@ std::string numbered(const char* stem, int frame, const char* ext) {
   return buf;
 }
 
-// The base as the polyline the frames carry: a planar base is the grid's
-// bottom line across the domain.
+// The base as the polyline the frames carry: a planar base, and the grid's
+// bottom boundary of a scene without a base (which the morphology measures
+// along too), is the grid's bottom line across the domain.
 std::vector<double> base_polyline(const Scene& s) {
-  if (s.base.kind == BaseKind::Planar)
+  if (s.base.kind != BaseKind::Polyline)
     return {s.grid.min.x(), s.grid.min.y(), s.grid.max.x(), s.grid.min.y()};
   std::vector<double> xy;
   for (const auto& p : s.base.points) {

@@ -1,0 +1,166 @@
+#include "MorphologyFrame.h"
+
+#include "FrameArrays.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkIntArray.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace runout::filters {
+
+namespace {
+
+// The point array `name` with at least `components` components, or nullptr.
+vtkDataArray* point_array(vtkPointSet* frame, const char* name, int components) {
+  vtkDataArray* a = frame->GetPointData()->GetArray(name);
+  return a && a->GetNumberOfComponents() >= components &&
+                 a->GetNumberOfTuples() == frame->GetNumberOfPoints()
+             ? a
+             : nullptr;
+}
+
+std::string missing_point_array(const char* name, int components) {
+  return std::string("The input has no point array \"") + name + "\" with " +
+         std::to_string(components) + " component(s) per point: not a Runout particle frame.";
+}
+
+struct ParticleFrame {
+  runout::Particles particles;      // x, y, vx, vy, mass, x0, y0
+  std::optional<runout::Base> base;
+  double spacing = 0;               // h / ppc
+};
+
+// The frame in the engine's types; "" or the error.
+std::string read_particle_frame(vtkPointSet* frame, ParticleFrame& out) {
+  vtkDataArray* velocity = point_array(frame, "velocity", 3);
+  if (!velocity) return missing_point_array("velocity", 3);
+  vtkDataArray* mass = point_array(frame, "mass", 1);
+  if (!mass) return missing_point_array("mass", 1);
+  vtkDataArray* initial = point_array(frame, "initial_position", 3);
+  if (!initial) return missing_point_array("initial_position", 3);
+  out.spacing = particle_spacing_of(frame);
+  if (!(out.spacing > 0))
+    return "The input has no field data \"particle_spacing\" (h / ppc, > 0): not a Runout "
+           "particle frame.";
+  out.base = read_base_points(frame);
+  if (!out.base)
+    return "The input has no field data \"base_points\" (the base polyline: at least two "
+           "(x, y, 0) points, x strictly increasing): not a Runout particle frame.";
+
+  runout::Particles& p = out.particles;
+  p.x.clear();
+  p.y.clear();
+  for (const Vec2& xy : positions_of(frame)) {
+    p.x.push_back(xy.x);
+    p.y.push_back(xy.y);
+  }
+  p.vx = component_of(velocity, 0);
+  p.vy = component_of(velocity, 1);
+  p.mass = component_of(mass, 0);
+  p.x0 = component_of(initial, 0);
+  p.y0 = component_of(initial, 1);
+  // measure_slide divides by the masses.
+  for (const double m : p.mass)
+    if (!(m > 0 && std::isfinite(m))) return "The point array \"mass\" must be > 0 everywhere.";
+  return "";
+}
+
+struct Column {
+  const char* name;
+  std::function<double(const FrameMorphology&)> value;
+};
+
+// The double columns after Time, in table order.
+const std::vector<Column>& measure_columns() {
+  static const std::vector<Column> columns = {
+      {"toe", [](const FrameMorphology& m) { return m.now.toe_s; }},
+      {"rear", [](const FrameMorphology& m) { return m.now.rear_s; }},
+      {"length", [](const FrameMorphology& m) { return m.now.length; }},
+      {"max_thickness", [](const FrameMorphology& m) { return m.now.max_thickness; }},
+      {"runout", [](const FrameMorphology& m) { return m.runout; }},
+      {"toe_velocity", [](const FrameMorphology& m) { return m.now.toe_velocity; }},
+      {"centroid_x", [](const FrameMorphology& m) { return m.now.centroid_x; }},
+      {"centroid_y", [](const FrameMorphology& m) { return m.now.centroid_y; }},
+      {"centroid_s", [](const FrameMorphology& m) { return m.now.centroid_s; }},
+      {"centroid_velocity", [](const FrameMorphology& m) { return m.now.centroid_velocity_s; }},
+      {"outside_mass", [](const FrameMorphology& m) { return m.now.outside_mass; }},
+      {"initial_toe", [](const FrameMorphology& m) { return m.initial.toe_s; }},
+      {"length_ratio", [](const FrameMorphology& m) { return m.evidence.length_ratio; }},
+      {"thickness_ratio", [](const FrameMorphology& m) { return m.evidence.thickness_ratio; }},
+  };
+  return columns;
+}
+
+struct CountColumn {
+  const char* name;
+  std::function<int(const FrameMorphology&)> value;
+};
+
+const std::vector<CountColumn>& count_columns() {
+  static const std::vector<CountColumn> columns = {
+      {"particles", [](const FrameMorphology& m) { return m.now.particles; }},
+      {"grabens", [](const FrameMorphology& m) { return m.evidence.grabens; }},
+      {"initial_grabens", [](const FrameMorphology& m) { return m.evidence.initial_grabens; }},
+      {"mechanism_id", [](const FrameMorphology& m) { return static_cast<int>(m.mechanism); }},
+  };
+  return columns;
+}
+
+}  // namespace
+
+std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out) {
+  out = FrameMorphology();
+  if (frame->GetNumberOfPoints() == 0) return "";
+  ParticleFrame particles;
+  const std::string error = read_particle_frame(frame, particles);
+  if (!error.empty()) return error;
+  out = measure_frame(particles.particles, particles.base->view(), particles.spacing,
+                      bin_spacings * particles.spacing);
+  return "";
+}
+
+void add_morphology_columns(vtkTable* table) {
+  // "Time", not "time": ParaView's line chart takes a column of that name
+  // as its x axis, so the history plots against time as it opens.
+  vtkNew<vtkDoubleArray> time;
+  time->SetName("Time");
+  table->AddColumn(time);
+  for (const Column& c : measure_columns()) {
+    vtkNew<vtkDoubleArray> column;
+    column->SetName(c.name);
+    table->AddColumn(column);
+  }
+  for (const CountColumn& c : count_columns()) {
+    vtkNew<vtkIntArray> column;
+    column->SetName(c.name);
+    table->AddColumn(column);
+  }
+  vtkNew<vtkStringArray> mechanism;
+  mechanism->SetName("mechanism");
+  table->AddColumn(mechanism);
+}
+
+void append_morphology_row(vtkTable* table, double time, const FrameMorphology& m) {
+  const bool empty = m.now.particles == 0;
+  vtkDoubleArray::SafeDownCast(table->GetColumnByName("Time"))->InsertNextValue(time);
+  for (const Column& c : measure_columns())
+    vtkDoubleArray::SafeDownCast(table->GetColumnByName(c.name))
+        ->InsertNextValue(empty ? vtkMath::Nan() : c.value(m));
+  for (const CountColumn& c : count_columns())
+    vtkIntArray::SafeDownCast(table->GetColumnByName(c.name))->InsertNextValue(c.value(m));
+  vtkStringArray::SafeDownCast(table->GetColumnByName("mechanism"))
+      ->InsertNextValue(mechanism_name(m.mechanism));
+}
+
+}  // namespace runout::filters

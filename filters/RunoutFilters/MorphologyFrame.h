@@ -1,0 +1,30 @@
+#pragma once
+// A Runout particle frame (docs/output.md) read into the engine's types for
+// MorphologyRules, and the morphology table that vtkRunoutMorphology (one
+// row) and vtkRunoutMorphologyHistory (one row per time step) output, so
+// that both give the same columns. Not wrapped.
+#include <string>
+
+#include "MorphologyRules.h"
+
+class vtkPointSet;
+class vtkTable;
+
+namespace runout::filters {
+
+// The morphology of a frame: measure_frame with profile bins of
+// bin_spacings particle spacings. Reads the points, the point arrays
+// velocity, mass and initial_position, and the field data base_points
+// (read_base_points) and particle_spacing. Returns "", else what is missing
+// or wrong, naming the array. No points: all zero, undetermined, and no
+// array is needed.
+std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out);
+
+// Adds the (empty) columns of the morphology table.
+void add_morphology_columns(vtkTable* table);
+
+// Appends the row of one frame at `time`; a frame without particles gets
+// NaN lengths and velocities.
+void append_morphology_row(vtkTable* table, double time, const FrameMorphology& m);
+
+}  // namespace runout::filters

@@ -1,0 +1,84 @@
+#pragma once
+// The slide's morphology on one frame and its mechanism class: the
+// algorithms of vtkRunoutMorphology and vtkRunoutMorphologyHistory on the
+// engine's own types (docs/filters.md, "Runout morphology"). The toe, rear,
+// thickness and profile are the engine's measure_slide and slide_profile
+// (docs/morphology.md), so the filters give the numbers of the run's
+// history.csv; this file adds the comparison with the initial configuration
+// and the mechanism rule.
+#include <vector>
+
+#include "runout/base.hpp"
+#include "runout/morphology.hpp"
+#include "runout/particles.hpp"
+
+namespace runout::filters {
+
+enum class Mechanism { Undetermined = 0, BlockSliding = 1, Elongation = 2, Spreading = 3 };
+
+// "undetermined", "block sliding", "elongation", "spreading".
+const char* mechanism_name(Mechanism mechanism);
+
+// Thresholds of the rule; docs/filters.md gives the reasons.
+constexpr double kElongationLengthRatio = 1.15;   // L / L0 from which the slide has lengthened
+constexpr double kBlockThicknessRatio = 0.8;      // Hmax / H0 above which it kept its height
+constexpr double kMovedFraction = 0.1;            // runout / L0 from which it has moved
+constexpr double kTroughDepthFraction = 0.2;      // trough depth / its lower flank
+constexpr double kTroughDepthSpacings = 2.0;      // trough depth, in particle spacings
+constexpr double kHorstThicknessFraction = 0.5;   // flank thickness / H0 of a horst
+
+// Morphological closing of a profile: the largest value within half_window
+// bins, then the smallest of those within half_window bins. It fills every
+// trough narrower than 2 half_window + 1 bins and leaves wider ones as they
+// are.
+std::vector<double> close_profile(const std::vector<double>& values, int half_window);
+
+// Grabens in a thickness profile (rear to front), counted once each. A bin
+// is the bottom of a trough when, going rearwards until a bin at most as
+// thick and frontwards until a bin thinner (so that a flat or repeated
+// bottom counts once), both sides hold a thicker flank; with F the lower of
+// the two flanks' largest thickness and t the bin's, it is a graben when
+//   F - t >= kTroughDepthFraction F,  F - t >= kTroughDepthSpacings spacing
+//   and F >= kHorstThicknessFraction initial_max_thickness
+// (both flanks are horsts: blocks that kept at least half the initial
+// height). Call it on a closed profile, or particle-scale gaps count.
+int count_grabens(const std::vector<double>& thickness, double spacing,
+                  double initial_max_thickness);
+
+// What the rule compares; the ratios are against the initial configuration.
+struct MechanismEvidence {
+  double length_ratio = 0;     // L / L0
+  double thickness_ratio = 0;  // Hmax / H0
+  double runout_ratio = 0;     // runout / L0
+  int grabens = 0;
+  int initial_grabens = 0;
+};
+
+// In this order: spreading when grabens have formed since t = 0 (more than
+// initially); elongation when L / L0 >= kElongationLengthRatio; block
+// sliding when Hmax / H0 > kBlockThicknessRatio and runout / L0 >=
+// kMovedFraction; undetermined otherwise, and for non-finite ratios.
+Mechanism classify_mechanism(const MechanismEvidence& evidence);
+
+struct FrameMorphology {
+  runout::SlideMorphology now;      // the frame
+  runout::SlideMorphology initial;  // the initial configuration (x0, y0)
+  double runout = 0;                // now.toe_s - initial.toe_s
+  runout::Profile profile;          // all particles, in the requested bins
+  MechanismEvidence evidence;
+  Mechanism mechanism = Mechanism::Undetermined;
+};
+
+// The frame's morphology. particles: the frame, with x0 and y0 the initial
+// position of each particle (the t = 0 configuration, which the engine
+// writes in every frame); spacing: h / ppc (> 0); bin_width: the profile's
+// bins (> 0). The grabens are counted on the main body's part of a profile
+// of kMainBodyBinSpacings spacings whatever bin_width, closed over the
+// initial maximum thickness H0: bands crossing a slide at 45 to 60 degrees
+// bound blocks about as wide as it is thick, so a narrower trough is a
+// crack or particle-scale noise, not a graben. No particles: all zero,
+// undetermined.
+FrameMorphology measure_frame(const runout::Particles& particles, const runout::BaseView& base,
+                              double spacing, double bin_width);
+
+}  // namespace runout::filters

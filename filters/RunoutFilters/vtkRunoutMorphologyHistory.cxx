@@ -1,0 +1,99 @@
+#include "vtkRunoutMorphologyHistory.h"
+
+#include "FrameArrays.h"
+#include "MorphologyFrame.h"
+
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointSet.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTable.h"
+
+vtkStandardNewMacro(vtkRunoutMorphologyHistory);
+
+//------------------------------------------------------------------------------
+int vtkRunoutMorphologyHistory::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRunoutMorphologyHistory::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  this->NumberOfTimeSteps = inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
+    ? inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
+    : 0;
+  // The table spans every time step: it has no time of its own, so that a
+  // change of the view's time does not run the whole series again.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRunoutMorphologyHistory::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (this->NumberOfTimeSteps > 0)
+  {
+    const double* steps = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    inInfo->Set(
+      vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), steps[this->CurrentTimeIndex]);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRunoutMorphologyHistory::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkTable* output = vtkTable::GetData(outputVector);
+
+  if (this->CurrentTimeIndex == 0)
+  {
+    this->History->Initialize();
+    runout::filters::add_morphology_columns(this->History);
+    if (this->NumberOfTimeSteps > 1)
+    {
+      request->Set(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING(), 1);
+    }
+  }
+
+  // The history has no profile to show: any bin width does.
+  runout::filters::FrameMorphology morphology;
+  const std::string error =
+    runout::filters::measure_point_set(input, runout::kMainBodyBinSpacings, morphology);
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< "Time step " << this->CurrentTimeIndex << ": " << error);
+    request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
+    this->CurrentTimeIndex = 0;
+    this->History->Initialize();
+    return 1;
+  }
+  runout::filters::append_morphology_row(
+    this->History, runout::filters::frame_time_of(input), morphology);
+
+  if (++this->CurrentTimeIndex < this->NumberOfTimeSteps)
+  {
+    return 1;
+  }
+  request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
+  this->CurrentTimeIndex = 0;
+  output->ShallowCopy(this->History);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkRunoutMorphologyHistory::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfTimeSteps: " << this->NumberOfTimeSteps << "\n";
+}

@@ -1,0 +1,163 @@
+"""Every Runout filter in headless pvpython on the output of a coarse engine
+run: a Tresca block sliding on a planar frictional slope, a few seconds of
+runtime. Loads the plugin, opens the run's .pvd, applies each filter that
+the plugin's XML files define with its default settings, updates every
+output port on the last frame, and checks the morphology filters' values.
+ctest fails the test on any "ERROR:" a filter prints.
+
+Usage: pvpython plugin_filters_on_run.py <RunoutPlugin.so> <folder of its XML files>
+The engine is $RUNOUT_CLI. Exit code 77 (ctest SKIP_RETURN_CODE) when
+paraview.simple is unavailable.
+"""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+from plugin_loads import runout_filters
+
+SCENE = """
+[scene]
+name = "plugin_run"
+
+[grid]
+cell_size = 0.5
+min = [-2.0, 0.0]
+max = [60.0, 6.0]
+
+[base]
+kind = "planar"
+interface = "frictional"
+shear_strength = 500.0
+
+[time]
+end = 3.0
+output_interval = 0.5
+
+[gravity]
+slope_angle = 5.0
+
+[[material]]
+name = "clay"
+model = "tresca"
+density = 600.0
+youngs_modulus = 250000.0
+poisson_ratio = 0.49
+su0 = 2500.0
+
+[[body]]
+name = "slide"
+material = "clay"
+type = "trapezoid"
+base_start = [0.0, 0.0]
+base_length = 20.0
+height = 2.0
+rear_angle = 30.0
+front_angle = 30.0
+"""
+
+
+def fail(message):
+    sys.exit(f"FAILED: {message}")
+
+
+def run_engine(folder):
+    """Runs the scene coarse; returns the path of its .pvd."""
+    scene = os.path.join(folder, "scene.toml")
+    with open(scene, "w") as f:
+        f.write(SCENE)
+    out = os.path.join(folder, "out")
+    subprocess.run([os.environ["RUNOUT_CLI"], "run", scene, "--cell", "0.5", "--ppc", "2",
+                    "-o", out, "-q"], check=True)
+    return os.path.join(out, "plugin_run.pvd")
+
+
+def columns(table):
+    """{column name: list of values} of a vtkTable."""
+    return {table.GetColumnName(c): [table.GetValue(r, c) for r in range(table.GetNumberOfRows())]
+            for c in range(table.GetNumberOfColumns())}
+
+
+def check_history(servermanager, history, times):
+    history.UpdatePipeline()
+    table = servermanager.Fetch(history)
+    if table.GetNumberOfRows() != len(times):
+        fail(f"history has {table.GetNumberOfRows()} rows for {len(times)} frames")
+    c = columns(table)
+    time = [v.ToDouble() for v in c["Time"]]
+    toe = [v.ToDouble() for v in c["toe"]]
+    runout = [v.ToDouble() for v in c["runout"]]
+    if time != list(times):
+        fail(f"history times {time}, the series' {list(times)}")
+    if runout[0] != 0.0:
+        fail(f"runout of the first frame {runout[0]}")
+    if any(r < 0.0 for r in runout):
+        fail(f"negative runout {runout}")
+    if any(b < a for a, b in zip(toe, toe[1:])) or not toe[-1] > toe[0]:
+        fail(f"the toe does not advance: {toe}")
+    print("history:", ", ".join(f"t={t:g} toe={x:.3f}" for t, x in zip(time, toe)))
+    return runout
+
+
+def check_morphology(servermanager, morphology, time, runout):
+    morphology.UpdatePipeline(time)
+    table = servermanager.Fetch(morphology, idx=1)
+    profile = servermanager.Fetch(morphology, idx=0)
+    if table.GetNumberOfRows() != 1:
+        fail(f"morphology table has {table.GetNumberOfRows()} rows")
+    c = columns(table)
+    if c["Time"][0].ToDouble() != time or c["runout"][0].ToDouble() != runout:
+        fail(f"morphology at t={time}: {c['Time'][0]}, runout {c['runout'][0]} (history {runout})")
+    mechanism = c["mechanism"][0].ToString()
+    if mechanism not in ("undetermined", "block sliding", "elongation", "spreading"):
+        fail(f"mechanism {mechanism!r}")
+    thickness = profile.GetPointData().GetArray("thickness")
+    if profile.GetNumberOfPoints() == 0 or thickness is None:
+        fail("empty profile")
+    top = max(thickness.GetValue(k) for k in range(thickness.GetNumberOfTuples()))
+    if not math.isclose(top, c["max_thickness"][0].ToDouble(), rel_tol=1e-12):
+        fail(f"profile's largest thickness {top}, table's {c['max_thickness'][0]}")
+    print(f"morphology at t={time:g}: runout {runout:.3f}, {mechanism}, "
+          f"{profile.GetNumberOfPoints()} profile bins")
+
+
+def main():
+    try:
+        from paraview import servermanager, simple
+    except ImportError as error:
+        print(f"paraview.simple is not available ({error}): skipped")
+        sys.exit(77)
+    plugin, xml_folder = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory() as folder:
+        pvd = run_engine(folder)
+        simple.LoadPlugin(plugin, remote=False)
+        reader = simple.PVDReader(FileName=pvd)
+        # Array selectors (Strain Array) take their default from the input's
+        # arrays, which ParaView knows once the reader has run, as the GUI's
+        # Apply does before a filter can be added.
+        reader.UpdatePipeline()
+        times = reader.TimestepValues
+        if len(times) < 3:
+            fail(f"the run wrote {len(times)} frames")
+
+        filters = {}
+        for proxy_name, function in sorted(runout_filters(xml_folder).items()):
+            if not hasattr(simple, function):
+                fail(f"no filter {function} after loading {plugin}")
+            f = getattr(simple, function)(Input=reader)
+            f.UpdatePipeline(times[-1])
+            for port in range(f.SMProxy.GetNumberOfOutputPorts()):
+                if servermanager.Fetch(f, idx=port) is None:
+                    fail(f"{function} gave no output on port {port}")
+            filters[proxy_name] = f
+            print(f"{function}: {f.SMProxy.GetNumberOfOutputPorts()} output port(s) updated")
+
+        runout = check_history(servermanager, filters["RunoutMorphologyHistory"], times)
+        for k in (0, len(times) - 1):
+            check_morphology(servermanager, filters["RunoutMorphology"], times[k], runout[k])
+    print("all Runout filters ran on", len(times), "frames")
+
+
+if __name__ == "__main__":
+    main()
