@@ -15,7 +15,9 @@ import subprocess
 import sys
 import tempfile
 
-from plugin_loads import runout_filters
+# The shared helpers lie beside this script, wherever it is run from.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from runout_paraview import paraview_and_arguments, runout_filters  # noqa: E402
 
 SCENE = """
 [scene]
@@ -123,12 +125,7 @@ def check_morphology(servermanager, morphology, time, runout):
 
 
 def main():
-    try:
-        from paraview import servermanager, simple
-    except ImportError as error:
-        print(f"paraview.simple is not available ({error}): skipped")
-        sys.exit(77)
-    plugin, xml_folder = sys.argv[1], sys.argv[2]
+    servermanager, simple, plugin, xml_folder = paraview_and_arguments()
     with tempfile.TemporaryDirectory() as folder:
         pvd = run_engine(folder)
         simple.LoadPlugin(plugin, remote=False)

@@ -5,26 +5,12 @@ category of the loaded plugin, under the Python name ParaView gives it.
 Usage: pvpython|pvbatch plugin_loads.py <RunoutPlugin.so> <folder of its XML files>
 Exit code 77 (ctest SKIP_RETURN_CODE) when paraview.simple is unavailable.
 """
-import glob
 import os
-import re
 import sys
-import xml.etree.ElementTree as ET
 
-
-def runout_filters(xml_folder):
-    """{proxy name: Python name} of every filter proxy in the XML files."""
-    filters = {}
-    for path in sorted(glob.glob(os.path.join(xml_folder, "*.xml"))):
-        for group in ET.parse(path).getroot().iter("ProxyGroup"):
-            if group.get("name") != "filters":
-                continue
-            for proxy in group.iter("SourceProxy"):
-                # ParaView names the Python function after the label, keeping
-                # only the characters valid in a Python name.
-                label = proxy.get("label", proxy.get("name"))
-                filters[proxy.get("name")] = re.sub(r"[^0-9A-Za-z_]", "", label)
-    return filters
+# The shared helpers lie beside this script, wherever it is run from.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from runout_paraview import paraview_and_arguments, runout_filters  # noqa: E402
 
 
 def loaded_runout_category(servermanager):
@@ -43,12 +29,7 @@ def loaded_runout_category(servermanager):
 
 
 def main():
-    try:
-        from paraview import servermanager, simple
-    except ImportError as error:
-        print(f"paraview.simple is not available ({error}): skipped")
-        sys.exit(77)
-    plugin, xml_folder = sys.argv[1], sys.argv[2]
+    servermanager, simple, plugin, xml_folder = paraview_and_arguments()
     expected = runout_filters(xml_folder)
     if not expected:
         sys.exit(f"no filter proxies in {xml_folder}/*.xml")

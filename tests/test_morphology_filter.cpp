@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "MorphologyRules.h"
+#include "filter_fixtures.hpp"
 #include "runout/vtu_writer.hpp"
 #include "vtkRunoutMorphology.h"
 #include "vtkRunoutMorphologyHistory.h"
@@ -35,6 +36,8 @@
 namespace fs = std::filesystem;
 using runout::Particles;
 using runout::filters::Mechanism;
+using runout::filter_fixtures::ErrorCounter;
+using runout::filter_fixtures::value;
 
 namespace {
 
@@ -121,29 +124,11 @@ vtkSmartPointer<vtkUnstructuredGrid> frame(const Particles& p, double time,
   return grid;
 }
 
-double value(vtkTable* table, const char* name, vtkIdType row = 0) {
-  vtkAbstractArray* a = table->GetColumnByName(name);
-  EXPECT_NE(a, nullptr) << name;
-  return a && row < a->GetNumberOfTuples() ? a->GetVariantValue(row).ToDouble() : NAN;
-}
-
 std::string mechanism(vtkTable* table, vtkIdType row = 0) {
   vtkAbstractArray* a = table->GetColumnByName("mechanism");
   EXPECT_NE(a, nullptr);
   return a && row < a->GetNumberOfTuples() ? a->GetVariantValue(row).ToString() : "";
 }
-
-// Counts an algorithm's errors instead of printing them.
-class ErrorCounter : public vtkCommand {
- public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void* message) override {
-    ++errors;
-    last = static_cast<const char*>(message);
-  }
-  int errors = 0;
-  std::string last;
-};
 
 // The filter run on one frame.
 struct Morphology {

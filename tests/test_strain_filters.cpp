@@ -32,11 +32,14 @@
 #include "HorstGraben.h"
 #include "ShearBands.h"
 #include "StrainAlgorithms.h"
+#include "filter_fixtures.hpp"
 #include "vtkRunoutHorstGraben.h"
 #include "vtkRunoutPlasticStrain.h"
 #include "vtkRunoutShearBands.h"
 
 using namespace runout::filters;
+using runout::filter_fixtures::ErrorCounter;
+using runout::filter_fixtures::value;
 
 namespace {
 
@@ -152,24 +155,6 @@ vtkSmartPointer<vtkUnstructuredGrid> to_frame(const Lattice& lattice, double h,
     grid->GetFieldData()->AddArray(base);
   }
   return grid;
-}
-
-// Counts a filter's errors instead of printing them.
-class ErrorCounter : public vtkCommand {
- public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void* message) override {
-    ++errors;
-    last = static_cast<const char*>(message);
-  }
-  int errors = 0;
-  std::string last;
-};
-
-double value(vtkTable* table, const char* column, vtkIdType row) {
-  vtkAbstractArray* a = table->GetColumnByName(column);
-  EXPECT_NE(a, nullptr) << column;
-  return a ? a->GetVariantValue(row).ToDouble() : NAN;
 }
 
 const std::vector<std::string> kBandColumns = {

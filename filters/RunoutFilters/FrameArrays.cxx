@@ -6,7 +6,10 @@
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -115,6 +118,26 @@ vtkSmartPointer<vtkIntArray> make_int_array(const char* name, const std::vector<
 void add_cell_column(vtkPolyData* cells, vtkTable* table, vtkAbstractArray* array) {
   cells->GetCellData()->AddArray(array);
   table->AddColumn(array);
+}
+
+void write_cells_and_table(vtkInformationVector* outputVector,
+                           const std::vector<const std::vector<Vec2>*>& outlines, bool polygons,
+                           const std::vector<vtkSmartPointer<vtkAbstractArray>>& columns) {
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> cells;
+  for (const std::vector<Vec2>* outline : outlines) {
+    cells->InsertNextCell(static_cast<vtkIdType>(outline->size()));
+    for (const Vec2& p : *outline) cells->InsertCellPoint(points->InsertNextPoint(p.x, p.y, 0.0));
+  }
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  output->SetPoints(points);
+  if (polygons)
+    output->SetPolys(cells);
+  else
+    output->SetLines(cells);
+  vtkTable* table = vtkTable::GetData(outputVector, 1);
+  for (const vtkSmartPointer<vtkAbstractArray>& column : columns)
+    add_cell_column(output, table, column);
 }
 
 }  // namespace runout::filters

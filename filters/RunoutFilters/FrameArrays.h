@@ -3,12 +3,16 @@
 // arrays that the filters' algorithms take, and their results back into VTK
 // arrays. Shared by the VTK classes of the module; not wrapped.
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "vtkDoubleArray.h"
 #include "vtkIntArray.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 
 #include "runout/base.hpp"
 
@@ -18,6 +22,7 @@ class vtkAbstractArray;
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkDataObject;
+class vtkInformationVector;
 class vtkPointSet;
 class vtkPolyData;
 class vtkTable;
@@ -63,5 +68,62 @@ vtkSmartPointer<vtkIntArray> make_int_array(const char* name, const std::vector<
 // Adds `array` both as a cell array of `cells` and as a column of `table`:
 // the band and block filters give the same values per cell and per row.
 void add_cell_column(vtkPolyData* cells, vtkTable* table, vtkAbstractArray* array);
+
+// The two outputs of the band and block filters: port 0 a vtkPolyData with
+// one cell per outline through its points (a polyline, or a polygon when
+// `polygons`), port 1 a vtkTable; each of `columns` goes to both, as a cell
+// array and as a column (add_cell_column), in order.
+void write_cells_and_table(vtkInformationVector* outputVector,
+                           const std::vector<const std::vector<Vec2>*>& outlines, bool polygons,
+                           const std::vector<vtkSmartPointer<vtkAbstractArray>>& columns);
+
+// A column of the band and block outputs: its name, its array type, and
+// how it reads an item (number for Double and Int, text for String).
+template <class Item>
+struct ItemColumn {
+  enum Kind { Double, Int, String };
+  ItemColumn(const char* name, Kind kind, std::function<double(const Item&)> number)
+      : name(name), kind(kind), number(std::move(number)) {}
+  ItemColumn(const char* name, std::function<std::string(const Item&)> text)
+      : name(name), kind(String), text(std::move(text)) {}
+  const char* name;
+  Kind kind;
+  std::function<double(const Item&)> number;
+  std::function<std::string(const Item&)> text;
+};
+
+// write_cells_and_table with one cell and row per item: the cell through
+// the item's `outline` points, then the column `id_name` (the item's
+// index, an int) and `columns`.
+template <class Item>
+void write_items(vtkInformationVector* outputVector, const std::vector<Item>& items,
+                 std::vector<Vec2> Item::*outline, bool polygons, const char* id_name,
+                 const std::vector<ItemColumn<Item>>& columns) {
+  const size_t n = items.size();
+  std::vector<const std::vector<Vec2>*> outlines(n);
+  std::vector<int> id(n);
+  for (size_t b = 0; b < n; ++b) {
+    outlines[b] = &(items[b].*outline);
+    id[b] = static_cast<int>(b);
+  }
+  std::vector<vtkSmartPointer<vtkAbstractArray>> arrays{make_int_array(id_name, id)};
+  for (const ItemColumn<Item>& column : columns) {
+    if (column.kind == ItemColumn<Item>::String) {
+      auto text = vtkSmartPointer<vtkStringArray>::New();
+      text->SetName(column.name);
+      text->SetNumberOfValues(static_cast<vtkIdType>(n));
+      for (size_t b = 0; b < n; ++b) text->SetValue(static_cast<vtkIdType>(b), column.text(items[b]));
+      arrays.push_back(text);
+      continue;
+    }
+    std::vector<double> values(n);
+    for (size_t b = 0; b < n; ++b) values[b] = column.number(items[b]);
+    if (column.kind == ItemColumn<Item>::Int)
+      arrays.push_back(make_int_array(column.name, std::vector<int>(values.begin(), values.end())));
+    else
+      arrays.push_back(make_double_array(column.name, values));
+  }
+  write_cells_and_table(outputVector, outlines, polygons, arrays);
+}
 
 }  // namespace runout::filters

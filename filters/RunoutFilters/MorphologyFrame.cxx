@@ -76,14 +76,16 @@ std::string read_particle_frame(vtkPointSet* frame, ParticleFrame& out) {
   return "";
 }
 
+// A column of the morphology table: its name and a frame's value in it.
+template <class T>
 struct Column {
   const char* name;
-  std::function<double(const FrameMorphology&)> value;
+  std::function<T(const FrameMorphology&)> value;
 };
 
 // The double columns after Time, in table order.
-const std::vector<Column>& measure_columns() {
-  static const std::vector<Column> columns = {
+const std::vector<Column<double>>& measure_columns() {
+  static const std::vector<Column<double>> columns = {
       {"toe", [](const FrameMorphology& m) { return m.now.toe_s; }},
       {"rear", [](const FrameMorphology& m) { return m.now.rear_s; }},
       {"length", [](const FrameMorphology& m) { return m.now.length; }},
@@ -102,13 +104,9 @@ const std::vector<Column>& measure_columns() {
   return columns;
 }
 
-struct CountColumn {
-  const char* name;
-  std::function<int(const FrameMorphology&)> value;
-};
-
-const std::vector<CountColumn>& count_columns() {
-  static const std::vector<CountColumn> columns = {
+// The int columns after them.
+const std::vector<Column<int>>& count_columns() {
+  static const std::vector<Column<int>> columns = {
       {"particles", [](const FrameMorphology& m) { return m.now.particles; }},
       {"grabens", [](const FrameMorphology& m) { return m.evidence.grabens; }},
       {"initial_grabens", [](const FrameMorphology& m) { return m.evidence.initial_grabens; }},
@@ -136,12 +134,12 @@ void add_morphology_columns(vtkTable* table) {
   vtkNew<vtkDoubleArray> time;
   time->SetName("Time");
   table->AddColumn(time);
-  for (const Column& c : measure_columns()) {
+  for (const Column<double>& c : measure_columns()) {
     vtkNew<vtkDoubleArray> column;
     column->SetName(c.name);
     table->AddColumn(column);
   }
-  for (const CountColumn& c : count_columns()) {
+  for (const Column<int>& c : count_columns()) {
     vtkNew<vtkIntArray> column;
     column->SetName(c.name);
     table->AddColumn(column);
@@ -154,10 +152,10 @@ void add_morphology_columns(vtkTable* table) {
 void append_morphology_row(vtkTable* table, double time, const FrameMorphology& m) {
   const bool empty = m.now.particles == 0;
   vtkDoubleArray::SafeDownCast(table->GetColumnByName("Time"))->InsertNextValue(time);
-  for (const Column& c : measure_columns())
+  for (const Column<double>& c : measure_columns())
     vtkDoubleArray::SafeDownCast(table->GetColumnByName(c.name))
         ->InsertNextValue(empty ? vtkMath::Nan() : c.value(m));
-  for (const CountColumn& c : count_columns())
+  for (const Column<int>& c : count_columns())
     vtkIntArray::SafeDownCast(table->GetColumnByName(c.name))->InsertNextValue(c.value(m));
   vtkStringArray::SafeDownCast(table->GetColumnByName("mechanism"))
       ->InsertNextValue(mechanism_name(m.mechanism));

@@ -1,17 +1,11 @@
 #include "vtkRunoutHorstGraben.h"
 
-#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkStringArray.h"
-#include "vtkTable.h"
 
 #include "FrameArrays.h"
 #include "HorstGraben.h"
@@ -53,57 +47,23 @@ int vtkRunoutHorstGraben::RequestData(
   const std::vector<SlideBlock> blocks = find_blocks(
     frame.points, magnitude_of(displacementArray), frame.bands, frame.base.view(), parameters);
 
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> outlines;
-  const size_t n = blocks.size();
-  vtkNew<vtkStringArray> type;
-  type->SetName("type");
-  type->SetNumberOfValues(static_cast<vtkIdType>(n));
-  std::vector<int> id(n), code(n), leftBand(n), rightBand(n), count(n);
-  std::vector<double> start(n), end(n), width(n), top(n), relief(n), leftDip(n), rightDip(n),
-    displacement(n);
-  for (size_t b = 0; b < n; ++b)
-  {
-    const SlideBlock& block = blocks[b];
-    outlines->InsertNextCell(static_cast<vtkIdType>(block.outline.size()));
-    for (const Vec2& p : block.outline)
+  using C = ItemColumn<SlideBlock>;
+  write_items<SlideBlock>(outputVector, blocks, &SlideBlock::outline, true, "block_id",
     {
-      outlines->InsertCellPoint(points->InsertNextPoint(p.x, p.y, 0.0));
-    }
-    id[b] = static_cast<int>(b);
-    type->SetValue(static_cast<vtkIdType>(b), block_type_name(block.type));
-    code[b] = static_cast<int>(block.type);
-    start[b] = block.start_s;
-    end[b] = block.end_s;
-    width[b] = block.width;
-    top[b] = block.top;
-    relief[b] = block.relief;
-    leftDip[b] = block.left_dip;
-    rightDip[b] = block.right_dip;
-    leftBand[b] = block.left_band;
-    rightBand[b] = block.right_band;
-    displacement[b] = block.displacement;
-    count[b] = block.particles;
-  }
-
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  output->SetPoints(points);
-  output->SetPolys(outlines);
-  vtkTable* table = vtkTable::GetData(outputVector, 1);
-  add_cell_column(output, table, make_int_array("block_id", id));
-  add_cell_column(output, table, type);
-  add_cell_column(output, table, make_int_array("type_code", code));
-  add_cell_column(output, table, make_double_array("start_s", start));
-  add_cell_column(output, table, make_double_array("end_s", end));
-  add_cell_column(output, table, make_double_array("width", width));
-  add_cell_column(output, table, make_double_array("top", top));
-  add_cell_column(output, table, make_double_array("relief", relief));
-  add_cell_column(output, table, make_double_array("left_dip", leftDip));
-  add_cell_column(output, table, make_double_array("right_dip", rightDip));
-  add_cell_column(output, table, make_int_array("left_band", leftBand));
-  add_cell_column(output, table, make_int_array("right_band", rightBand));
-  add_cell_column(output, table, make_double_array("displacement", displacement));
-  add_cell_column(output, table, make_int_array("particle_count", count));
+      { "type", [](const SlideBlock& b) { return std::string(block_type_name(b.type)); } },
+      { "type_code", C::Int, [](const SlideBlock& b) { return static_cast<double>(b.type); } },
+      { "start_s", C::Double, [](const SlideBlock& b) { return b.start_s; } },
+      { "end_s", C::Double, [](const SlideBlock& b) { return b.end_s; } },
+      { "width", C::Double, [](const SlideBlock& b) { return b.width; } },
+      { "top", C::Double, [](const SlideBlock& b) { return b.top; } },
+      { "relief", C::Double, [](const SlideBlock& b) { return b.relief; } },
+      { "left_dip", C::Double, [](const SlideBlock& b) { return b.left_dip; } },
+      { "right_dip", C::Double, [](const SlideBlock& b) { return b.right_dip; } },
+      { "left_band", C::Int, [](const SlideBlock& b) { return double(b.left_band); } },
+      { "right_band", C::Int, [](const SlideBlock& b) { return double(b.right_band); } },
+      { "displacement", C::Double, [](const SlideBlock& b) { return b.displacement; } },
+      { "particle_count", C::Int, [](const SlideBlock& b) { return double(b.particles); } },
+    });
   return 1;
 }
 

@@ -1,15 +1,10 @@
 #include "vtkRunoutShearBands.h"
 
-#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointSet.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkTable.h"
 
 #include "FrameArrays.h"
 #include "ShearBands.h"
@@ -102,45 +97,20 @@ int vtkRunoutShearBands::RequestData(
     return 1;
   }
 
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> skeletons;
-  const size_t n = frame.bands.size();
-  std::vector<int> id(n), count(n);
-  std::vector<double> cx(n), cy(n), cs(n), dip(n), length(n), thickness(n), mean(n), peak(n);
-  for (size_t b = 0; b < n; ++b)
-  {
-    const ShearBand& band = frame.bands[b];
-    skeletons->InsertNextCell(static_cast<vtkIdType>(band.skeleton.size()));
-    for (const Vec2& p : band.skeleton)
+  using C = ItemColumn<ShearBand>;
+  write_items<ShearBand>(outputVector, frame.bands, &ShearBand::skeleton, false, "band_id",
     {
-      skeletons->InsertCellPoint(points->InsertNextPoint(p.x, p.y, 0.0));
-    }
-    id[b] = static_cast<int>(b);
-    count[b] = static_cast<int>(band.particles.size());
-    cx[b] = band.centroid.x;
-    cy[b] = band.centroid.y;
-    cs[b] = band.centroid_s;
-    dip[b] = band.dip;
-    length[b] = band.length;
-    thickness[b] = band.thickness;
-    mean[b] = band.mean_strain;
-    peak[b] = band.peak_strain;
-  }
-
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  output->SetPoints(points);
-  output->SetLines(skeletons);
-  vtkTable* table = vtkTable::GetData(outputVector, 1);
-  add_cell_column(output, table, make_int_array("band_id", id));
-  add_cell_column(output, table, make_double_array("centroid_x", cx));
-  add_cell_column(output, table, make_double_array("centroid_y", cy));
-  add_cell_column(output, table, make_double_array("centroid_s", cs));
-  add_cell_column(output, table, make_double_array("dip", dip));
-  add_cell_column(output, table, make_double_array("length", length));
-  add_cell_column(output, table, make_double_array("thickness", thickness));
-  add_cell_column(output, table, make_double_array("mean_strain", mean));
-  add_cell_column(output, table, make_double_array("peak_strain", peak));
-  add_cell_column(output, table, make_int_array("particle_count", count));
+      { "centroid_x", C::Double, [](const ShearBand& b) { return b.centroid.x; } },
+      { "centroid_y", C::Double, [](const ShearBand& b) { return b.centroid.y; } },
+      { "centroid_s", C::Double, [](const ShearBand& b) { return b.centroid_s; } },
+      { "dip", C::Double, [](const ShearBand& b) { return b.dip; } },
+      { "length", C::Double, [](const ShearBand& b) { return b.length; } },
+      { "thickness", C::Double, [](const ShearBand& b) { return b.thickness; } },
+      { "mean_strain", C::Double, [](const ShearBand& b) { return b.mean_strain; } },
+      { "peak_strain", C::Double, [](const ShearBand& b) { return b.peak_strain; } },
+      { "particle_count", C::Int,
+        [](const ShearBand& b) { return static_cast<double>(b.particles.size()); } },
+    });
   return 1;
 }
 

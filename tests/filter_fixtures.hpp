@@ -1,0 +1,36 @@
+#pragma once
+// Helpers shared by the GoogleTest suites of the ParaView filters
+// (test_strain_filters.cpp, test_morphology_filter.cpp).
+#include <gtest/gtest.h>
+
+#include <vtkAbstractArray.h>
+#include <vtkCommand.h>
+#include <vtkTable.h>
+#include <vtkVariant.h>
+
+#include <cmath>
+#include <string>
+
+namespace runout::filter_fixtures {
+
+// Counts an algorithm's errors instead of printing them.
+class ErrorCounter : public vtkCommand {
+ public:
+  static ErrorCounter* New() { return new ErrorCounter; }
+  void Execute(vtkObject*, unsigned long, void* message) override {
+    ++errors;
+    last = static_cast<const char*>(message);
+  }
+  int errors = 0;
+  std::string last;
+};
+
+// Row `row` of the table's column `name` as a double: NaN, after a failed
+// expectation, without the column; NaN without the row.
+inline double value(vtkTable* table, const char* name, vtkIdType row = 0) {
+  vtkAbstractArray* a = table->GetColumnByName(name);
+  EXPECT_NE(a, nullptr) << name;
+  return a && row < a->GetNumberOfTuples() ? a->GetVariantValue(row).ToDouble() : NAN;
+}
+
+}  // namespace runout::filter_fixtures
