@@ -15,32 +15,22 @@ one, ../shared/BUILD.md):
 TIME defaults to the frame nearest a tenth of the run: early, while the
 slide is still thick enough to show at the width of a page.
 """
+import os
 import sys
 
-from paraview import simple
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import simple  # noqa: E402
 
-EXAGGERATION = [1.0, 3.0, 1.0]
+import runout_pv  # noqa: E402
+from runout_pv import show  # noqa: E402
+
 SIZE = [1100, 640]
-
-
-def show(source, view, port=0, z=0.0, **properties):
-    """Shows the output in the view, heights exaggerated, moved z towards
-    the camera (lines drawn over the particles must be in front of them)."""
-    display = simple.Show(simple.OutputPort(source, port), view)
-    display.Scale = EXAGGERATION
-    display.Position = [0.0, 0.0, z]
-    for name, value in properties.items():
-        setattr(display, name, value)
-    return display
 
 
 def main():
     pvd, plugin, png = sys.argv[1:4]
-    simple.LoadPlugin(plugin, remote=False)
-    reader = simple.PVDReader(FileName=pvd)
-    # The filters' array selectors take their defaults from the input's
-    # arrays, which ParaView knows once the reader has run (the GUI's Apply).
-    reader.UpdatePipeline()
+    runout_pv.load_plugin(plugin)
+    reader = runout_pv.open_run(pvd)
     times = reader.TimestepValues
     time = (float(sys.argv[4]) if len(sys.argv) > 4
             else min(times, key=lambda t: abs(t - times[-1] / 10)))
@@ -52,34 +42,16 @@ def main():
     history = simple.RunoutMorphologyHistory(Input=reader)
 
     # The frame first, so that the colour range is the frame's.
-    scene = simple.GetAnimationScene()
-    scene.UpdateAnimationUsingDataTimeSteps()
-    scene.AnimationTime = time
+    runout_pv.set_time(time)
 
     layout = simple.CreateLayout("walkthrough")
-    render = simple.CreateView("RenderView")
-    render.OrientationAxesVisibility = 0
-    render.Background = [1.0, 1.0, 1.0]
-    render.UseColorPaletteForBackground = 0
+    render = runout_pv.render_view()
     simple.AssignViewToLayout(view=render, layout=layout, hint=0)
     particles = show(reader, render, Representation="Points", PointSize=4.0)
-    simple.ColorBy(particles, ("POINTS", "plastic_shear_strain"))
-    particles.LookupTable = simple.GetColorTransferFunction("plastic_shear_strain")
-    particles.LookupTable.ApplyPreset("Viridis (matplotlib)", True)
-    particles.RescaleTransferFunctionToDataRange(False, True)
-    particles.SetScalarBarVisibility(render, True)
-    bar = simple.GetScalarBar(particles.LookupTable, render)
-    bar.Title = "plastic shear strain"
-    bar.ComponentTitle = ""
-    bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
-    bar.WindowLocation = "Upper Right Corner"
-    bar.Orientation = "Horizontal"
+    runout_pv.colour_by(particles, render, "plastic_shear_strain", "plastic shear strain")
     for source, colour in ((bands, [0.85, 0.0, 0.0]), (blocks, [0.15, 0.15, 0.15]),
                            (morphology, [1.0, 0.45, 0.0])):
-        # Wireframe: the block outlines are polygons, which would hide the
-        # particles as surfaces.
-        show(source, render, z=1.0, Representation="Wireframe", LineWidth=2.5,
-             ColorArrayName=["POINTS", ""], AmbientColor=colour, DiffuseColor=colour)
+        runout_pv.show_lines(source, render, colour)
 
     chart = simple.CreateView("XYChartView")
     chart.LeftAxisTitle = "m"
@@ -95,14 +67,7 @@ def main():
     layout.SetSize(*SIZE)  # after the views are in, or they keep their default size
     # Fit the slide's length to the view's width (its height is far less).
     simple.Render(render)
-    xmin, xmax, ymin, ymax = reader.GetDataInformation().GetBounds()[:4]
-    centre = [(xmin + xmax) / 2, EXAGGERATION[1] * (ymin + ymax) / 2, 0.0]
-    render.CameraParallelProjection = 1
-    render.CameraFocalPoint = centre
-    render.CameraPosition = [centre[0], centre[1], 100.0]
-    render.CameraViewUp = [0.0, 1.0, 0.0]
-    width, height = render.ViewSize
-    render.CameraParallelScale = 0.55 * (xmax - xmin) * height / width
+    runout_pv.fit_camera(render, reader.GetDataInformation().GetBounds())
     simple.SaveScreenshot(png, layout, ImageResolution=SIZE, CompressionLevel="9")
 
 

@@ -1,0 +1,300 @@
+"""Renders the standard figures of a runout study from a run's output
+folder into OUT_DIR/figures/ (docs/figures.md):
+
+  velocity_tNNN.NN.png   velocity magnitude on the particles at each chosen
+                         time, one colour range for all, the base drawn;
+  morphology.png         the slide's upper surface (Runout Morphology,
+                         Profile port) at the chosen times in one chart;
+  strain_bands.png       plastic shear strain with the shear band skeletons
+                         (Runout Shear Bands) and the block outlines (Runout
+                         Horsts And Grabens) over it, at the last chosen time;
+  history.png            runout and toe velocity against time from
+                         history.csv, one curve per run (--compare);
+  animation/velocity_NNNNN.png   with --animation: every frame's velocity;
+  figures.json           what was rendered: each PNG, its size and the
+                         colours it must show (the tests check them).
+
+Usage (rendering needs an X server; Debian's ParaView has no offscreen one):
+  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvbatch states/figures.py \\
+    OUT_DIR [--plugin RunoutPlugin.so] [--times t1,t2,...] [--size WxH] \\
+    [--animation] [--compare DIR2 [DIR3 ...]] [--labels L1,L2,...]
+scripts/figures finds pvbatch and the plugin and does this for you.
+"""
+import argparse
+import builtins
+import csv
+import json
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import simple  # noqa: E402
+
+import runout_pv  # noqa: E402
+
+# The colours the figures use, so that the tests can look for them.
+BAND_RED = [0.85, 0.0, 0.0]
+BLOCK_INK = [0.15, 0.15, 0.15]
+BASE_GREY = [0.45, 0.45, 0.45]
+# One colour per curve (times of the morphology chart, runs of the history).
+CURVES = [[0.27, 0.0, 0.33], [0.23, 0.32, 0.55], [0.13, 0.57, 0.55], [0.37, 0.79, 0.38],
+          [0.99, 0.91, 0.14], [0.85, 0.37, 0.0], [0.8, 0.0, 0.2], [0.4, 0.4, 0.4]]
+
+
+def arguments():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("out_dir", help="a run's output folder (<name>.pvd, history.csv)")
+    parser.add_argument("--plugin", help="RunoutPlugin.so (default: the build's, or "
+                        "already loaded through PV_PLUGIN_PATH)")
+    parser.add_argument("--times", help="comma-separated times (s); default: 4 spread "
+                        "over the run")
+    parser.add_argument("--size", default="1200x600", help="WxH of every PNG")
+    parser.add_argument("--animation", action="store_true",
+                        help="also every frame's velocity into figures/animation/")
+    parser.add_argument("--compare", nargs="+", default=[], metavar="DIR",
+                        help="more run folders whose histories to overlay")
+    parser.add_argument("--labels", help="comma-separated labels of OUT_DIR and the "
+                        "--compare folders (default: the folders' names)")
+    return parser.parse_args()
+
+
+def rgb255(colour):
+    return [round(255 * c) for c in colour]
+
+
+def map_ends(lut):
+    """The end colours (0-255) of a colour map: its scale bar shows them."""
+    points = list(lut.RGBPoints)
+    return [rgb255(points[1:4]), rgb255(points[-3:])]
+
+
+def default_plugin():
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    return os.path.join(root, "build", "lib", "paraview-5.11", "plugins", "RunoutPlugin",
+                        "RunoutPlugin.so")
+
+
+def chosen_times(option, steps):
+    """The asked times snapped to the frames, or 4 frames spread over the
+    run (its start excluded: nothing has moved yet)."""
+    if option:
+        asked = [float(t) for t in option.split(",") if t.strip()]
+        return [builtins.min(steps, key=lambda s: abs(s - t)) for t in asked]
+    if len(steps) <= 4:
+        return list(steps)
+    picks = [steps[round(i * (len(steps) - 1) / 4)] for i in (1, 2, 3, 4)]
+    return sorted(set(picks))
+
+
+def largest_speed(run_dir):
+    """The largest particle speed of the run (history.csv's max_speed),
+    one colour range for every velocity picture."""
+    try:
+        with open(os.path.join(run_dir, "history.csv")) as f:
+            return builtins.max(float(row["max_speed"]) for row in csv.DictReader(f)) or 1.0
+    except (OSError, KeyError, ValueError):
+        return None
+
+
+class Figures:
+    def __init__(self, options):
+        self.options = options
+        self.size = [int(v) for v in options.size.lower().split("x")]
+        self.folder = os.path.join(options.out_dir, "figures")
+        os.makedirs(self.folder, exist_ok=True)
+        self.manifest = []
+        runout_pv.load_plugin(options.plugin or default_plugin())
+        self.reader = runout_pv.open_run(runout_pv.find_pvd(options.out_dir))
+        self.steps = list(self.reader.TimestepValues) or [0.0]
+        self.times = chosen_times(options.times, self.steps)
+
+    def save(self, layout, name, colours, what):
+        path = os.path.join(self.folder, name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        layout.SetSize(*self.size)
+        simple.SaveScreenshot(path, layout, ImageResolution=self.size, CompressionLevel="9")
+        self.manifest.append({"png": os.path.relpath(path, self.folder), "size": self.size,
+                              "colours": colours, "what": what})
+        print(path)
+        return path
+
+    def clear(self):
+        """Deletes every view and layout (the next figure starts afresh)."""
+        simple.RemoveViewsAndLayouts()
+
+    # 1. Velocity magnitude on the particles.
+    def velocity_view(self, layout_name):
+        layout = simple.CreateLayout(layout_name)
+        view = runout_pv.render_view()
+        simple.AssignViewToLayout(view=view, layout=layout, hint=0)
+        base = runout_pv.base_line(self.reader)
+        runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0)
+        particles = runout_pv.show(self.reader, view, Representation="Points", PointSize=4.0)
+        speed = largest_speed(self.options.out_dir)
+        lut = runout_pv.colour_by(particles, view, "velocity", "velocity magnitude (m/s)",
+                            preset="Turbo", component="Magnitude",
+                            data_range=None if speed is None else [0.0, speed])
+        text = simple.Text(registrationName="time label")
+        label = simple.Show(text, view)
+        label.WindowLocation = "Upper Left Corner"
+        label.Color = runout_pv.INK
+        label.FontSize = 16
+        layout.SetSize(*self.size)
+        return layout, view, text, map_ends(lut)
+
+    def fit_to_run(self, view):
+        """The camera on the particles of the whole run (their bounds over
+        the chosen times and the last frame), so that pictures compare."""
+        bounds = [1e300, -1e300, 1e300, -1e300]
+        for t in set(self.times + [self.steps[-1], self.steps[0]]):
+            runout_pv.set_time(t)
+            self.reader.UpdatePipeline(t)
+            b = self.reader.GetDataInformation().GetBounds()
+            bounds = [builtins.min(bounds[0], b[0]), builtins.max(bounds[1], b[1]),
+                      builtins.min(bounds[2], b[2]), builtins.max(bounds[3], b[3])]
+        simple.Render(view)
+        runout_pv.fit_camera(view, bounds, fill=0.52)
+
+    def velocity(self):
+        layout, view, text, ends = self.velocity_view("velocity")
+        self.fit_to_run(view)
+        for t in self.times:
+            runout_pv.set_time(t)
+            text.Text = f"t = {t:g} s"
+            self.save(layout, f"velocity_t{t:07.2f}.png", ends,
+                      f"velocity magnitude at t = {t:g} s")
+        self.clear()
+
+    def animation(self):
+        layout, view, text, ends = self.velocity_view("animation")
+        self.fit_to_run(view)
+        for i, t in enumerate(self.steps):
+            runout_pv.set_time(t)
+            text.Text = f"t = {t:g} s"
+            self.save(layout, os.path.join("animation", f"velocity_{i:05d}.png"), ends,
+                      f"animation frame {i}, t = {t:g} s")
+        self.clear()
+
+    # 2. Morphology evolution.
+    def morphology(self):
+        layout = simple.CreateLayout("morphology")
+        chart = simple.CreateView("XYChartView")
+        simple.AssignViewToLayout(view=chart, layout=layout, hint=0)
+        chart.ChartTitle = "upper surface of the slide (Runout Morphology, Profile)"
+        chart.BottomAxisTitle = "x (m)"
+        chart.LeftAxisTitle = "surface height y (m)"
+        chart.LegendLocation = "TopRight"
+        profile = simple.RunoutMorphology(registrationName="morphology", Input=self.reader)
+        colours = []
+        for i, t in enumerate(self.times):
+            at = simple.ForceTime(registrationName=f"profile at {t:g} s",
+                                  Input=simple.OutputPort(profile, 0))
+            at.ForcedTime = t
+            at.IgnorePipelineTime = 1
+            curve = simple.Show(at, chart, "XYChartRepresentation")
+            curve.UseIndexForXAxis = 0
+            curve.XArrayName = "Points_X"
+            curve.SeriesVisibility = ["Points_Y"]
+            colour = CURVES[i % len(CURVES)]
+            curve.SeriesColor = ["Points_Y"] + [str(c) for c in colour]
+            curve.SeriesLabel = ["Points_Y", f"t = {t:g} s"]
+            curve.SeriesLineThickness = ["Points_Y", "3"]
+            colours.append(rgb255(colour))
+        self.save(layout, "morphology.png", colours[-2:], "surface profiles at "
+                  + ", ".join(f"{t:g}" for t in self.times) + " s")
+        self.clear()
+
+    # 3. Plastic shear strain, shear bands, horsts and grabens.
+    def strain_bands(self):
+        t = self.times[-1]
+        runout_pv.set_time(t)
+        layout = simple.CreateLayout("strain bands")
+        view = runout_pv.render_view()
+        simple.AssignViewToLayout(view=view, layout=layout, hint=0)
+        lut = build_strain_bands(self.reader, view)[-1]
+        text = simple.Text(registrationName="time label", Text=f"t = {t:g} s")
+        label = simple.Show(text, view)
+        label.WindowLocation = "Upper Left Corner"
+        label.Color = runout_pv.INK
+        layout.SetSize(*self.size)
+        simple.Render(view)
+        runout_pv.fit_camera(view, self.reader.GetDataInformation().GetBounds())
+        self.save(layout, "strain_bands.png", map_ends(lut) + [rgb255(BAND_RED)],
+                  f"plastic shear strain, shear bands and blocks at t = {t:g} s")
+        self.clear()
+
+    # 4. Runout and toe velocity against time.
+    def history(self):
+        runs = [self.options.out_dir] + list(self.options.compare)
+        labels = (self.options.labels.split(",") if self.options.labels
+                  else [os.path.basename(os.path.normpath(r)) for r in runs])
+        if len(labels) != len(runs):
+            raise SystemExit(f"--labels: {len(labels)} labels for {len(runs)} runs")
+        layout = simple.CreateLayout("history")
+        charts = []
+        for hint, (column, axis) in enumerate((("runout", "runout (m)"),
+                                               ("toe_velocity", "toe velocity (m/s)"))):
+            chart = simple.CreateView("XYChartView")
+            chart.LeftAxisTitle = axis
+            chart.BottomAxisTitle = "time (s)"
+            chart.LegendLocation = "TopLeft" if column == "runout" else "TopRight"
+            charts.append((chart, column))
+        layout.SplitVertical(0, 0.5)
+        simple.AssignViewToLayout(view=charts[0][0], layout=layout, hint=1)
+        simple.AssignViewToLayout(view=charts[1][0], layout=layout, hint=2)
+        colours = []
+        for i, (run, label) in enumerate(zip(runs, labels)):
+            table = simple.CSVReader(registrationName=f"history {label}",
+                                     FileName=[os.path.join(run, "history.csv")])
+            colour = CURVES[(2 * i + 1) % len(CURVES)] if len(runs) > 1 else [0.8, 0.0, 0.2]
+            colours.append(rgb255(colour))
+            for chart, column in charts:
+                curve = simple.Show(table, chart, "XYChartRepresentation")
+                curve.UseIndexForXAxis = 0
+                curve.XArrayName = "time"
+                curve.SeriesVisibility = [column]
+                curve.SeriesColor = [column] + [str(c) for c in colour]
+                curve.SeriesLabel = [column, label]
+                curve.SeriesLineThickness = [column, "3"]
+        self.save(layout, "history.png", colours,
+                  "runout and toe velocity against time: " + ", ".join(labels))
+        self.clear()
+
+    def write_manifest(self):
+        with open(os.path.join(self.folder, "figures.json"), "w") as f:
+            json.dump({"run": os.path.abspath(self.options.out_dir), "times": self.times,
+                       "figures": self.manifest}, f, indent=1)
+
+
+def build_strain_bands(reader, view):
+    """Figure 3's pipeline in a view: the particles coloured by their
+    plastic shear strain, the base, the shear band skeletons (red) and the
+    block outlines (black) over them (also the pipeline of
+    states/strain_bands.pvsm)."""
+    bands = simple.RunoutShearBands(registrationName="shear bands", Input=reader)
+    blocks = simple.RunoutHorstsAndGrabens(registrationName="horsts and grabens",
+                                           Input=reader)
+    base = runout_pv.base_line(reader)
+    runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0)
+    particles = runout_pv.show(reader, view, Representation="Points", PointSize=4.0)
+    lut = runout_pv.colour_by(particles, view, "plastic_shear_strain",
+                              "plastic shear strain")
+    runout_pv.show_lines(blocks, view, BLOCK_INK, width=2.0)
+    runout_pv.show_lines(bands, view, BAND_RED, z=2.0, width=3.0)
+    return bands, blocks, base, lut
+
+
+def main():
+    options = arguments()
+    figures = Figures(options)
+    figures.velocity()
+    figures.morphology()
+    figures.strain_bands()
+    figures.history()
+    if options.animation:
+        figures.animation()
+    figures.write_manifest()
+
+
+if __name__ == "__main__":
+    main()
