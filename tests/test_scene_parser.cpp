@@ -281,6 +281,14 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"UnknownTopLevelTable", 13, 13, "[gird]\nx = 1\n", 13, "gird", "unknown key"},
         ErrorCase{"UnknownTopLevelKey", 1, 1, "verbose = true\n[scene]", 1, "verbose", "unknown key"},
         ErrorCase{"UnknownNestedKey", 5, 5, "cellsize = 0.5", 5, "grid.cellsize", "unknown key"},
+        ErrorCase{"UnknownMethod", 3, 3, "method = \"sph\"", 3, "scene.method",
+                  "must be one of \"mpm\", \"dam\" (got \"sph\")"},
+        ErrorCase{"UnknownShearRate", 13, 13, "[dam]\nshear_rate = \"cubic\"", 14,
+                  "dam.shear_rate", "must be one of \"linear\", \"plug\""},
+        ErrorCase{"NegativeElements", 13, 13, "[dam]\nelements = -1", 14, "dam.elements",
+                  "must be >= 0 (got -1)"},
+        ErrorCase{"EmptyShearLayer", 13, 13, "[dam]\nmin_shear_layer = 0", 14,
+                  "dam.min_shear_layer", "must be in (0, 1] (got 0)"},
         ErrorCase{"UnknownBodyKey", 25, 25, "colour = \"red\"", 25, "body[0].colour", "unknown key"},
         ErrorCase{"KeyOfAnotherBodyType", 25, 25, "max = [3.0, 2.0]\nheight = 1.0", 26,
                   "body[0].height", "unknown key"},
@@ -473,6 +481,10 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.base.interface, b.base.interface);
   EXPECT_EQ(a.base.shear_strength, b.base.shear_strength);
   EXPECT_EQ(a.base.friction, b.base.friction);
+  EXPECT_EQ(a.method, b.method);
+  EXPECT_EQ(a.dam.shear_rate, b.dam.shear_rate);
+  EXPECT_EQ(a.dam.elements, b.dam.elements);
+  EXPECT_EQ(a.dam.min_shear_layer, b.dam.min_shear_layer);
   EXPECT_EQ(a.output.compress, b.output.compress);
   EXPECT_EQ(a.overrides, b.overrides);
 }
@@ -520,6 +532,37 @@ TEST(SceneWriter, PlanarBaseAndTrescaDefaultsRoundTrip) {
       "planar.toml");
   ASSERT_EQ(s.base.kind, BaseKind::Planar);
   expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
+}
+
+// The depth-averaged model's keys: the method in [scene], the [dam] table.
+TEST(SceneWriter, DepthAveragedKeysRoundTrip) {
+  Scene s = parse_scene(replace_lines(3, 3, "method = \"dam\"") +
+                            "[dam]\nshear_rate = \"plug\"\nelements = 120\nmin_shear_layer = 0.25\n",
+                        "dam.toml");
+  EXPECT_EQ(s.method, Method::Dam);
+  EXPECT_EQ(s.dam.shear_rate, ShearRateEstimate::Plug);
+  EXPECT_EQ(s.dam.elements, 120);
+  EXPECT_EQ(s.dam.min_shear_layer, 0.25);
+  expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
+  const Scene defaults = parse_scene(kMinimal, "mini.toml");
+  EXPECT_EQ(defaults.method, Method::Mpm);
+  EXPECT_EQ(defaults.dam.shear_rate, ShearRateEstimate::Linear);
+  EXPECT_EQ(defaults.dam.elements, 0);
+}
+
+TEST(SceneWriter, MethodOverridesAreRecordedAndChecked) {
+  Scene s = default_scene();
+  apply_method_overrides(s, std::string("dam"), std::string("plug"), 40);
+  EXPECT_EQ(s.method, Method::Dam);
+  EXPECT_EQ(s.dam.shear_rate, ShearRateEstimate::Plug);
+  EXPECT_EQ(s.dam.elements, 40);
+  EXPECT_EQ(s.overrides, (std::vector<std::string>{"scene.method = \"dam\"",
+                                                   "dam.shear_rate = \"plug\"",
+                                                   "dam.elements = 40"}));
+  expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
+  EXPECT_THROW(apply_method_overrides(s, std::string("fem"), std::nullopt, std::nullopt),
+               SceneError);
+  EXPECT_THROW(apply_method_overrides(s, std::nullopt, std::nullopt, -2), SceneError);
 }
 
 TEST(SceneWriter, OverridesAreRecordedAndChecked) {

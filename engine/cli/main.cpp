@@ -25,6 +25,8 @@ struct SceneArgs {
   std::optional<double> cell;
   std::optional<int> ppc;
   std::optional<double> end;
+  std::optional<std::string> method, shear_rate;
+  std::optional<int> elements;
 };
 
 void add_scene_args(CLI::App* cmd, SceneArgs& a) {
@@ -32,12 +34,18 @@ void add_scene_args(CLI::App* cmd, SceneArgs& a) {
   cmd->add_option("--cell", a.cell, "Override the cell size h [m]");
   cmd->add_option("--ppc", a.ppc, "Override the particles per cell per direction");
   cmd->add_option("--end", a.end, "Override the end time [s]");
+  cmd->add_option("--method", a.method, "Override the method: mpm or dam (depth-averaged)");
+  cmd->add_option("--shear-rate", a.shear_rate,
+                  "Override the depth-averaged shear rate estimate: linear or plug");
+  cmd->add_option("--elements", a.elements,
+                  "Override the depth-averaged element count (0: length / cell size)");
 }
 
 Scene load(const SceneArgs& a) {
   Scene s = a.path.empty() ? parse_scene(default_scene_toml(), "default.toml")
                            : load_scene_file(a.path);
   apply_overrides(s, a.cell, a.ppc, a.end);
+  apply_method_overrides(s, a.method, a.shear_rate, a.elements);
   return s;
 }
 
@@ -67,7 +75,10 @@ int run(const Scene& s, const std::string& out, bool quiet) {
   if (!quiet) opt.on_progress = [&](const RunProgress& p) { progress.update(p); };
   RunSummary r;
   try {
-    r = run_scene(s, opt);
+    r = s.method == Method::Dam ? run_dam(s, opt) : run_scene(s, opt);
+  } catch (const SceneError&) {
+    progress.finish();
+    throw;  // a scene the method cannot run: main's exit code for it
   } catch (const std::exception& e) {
     progress.finish();
     std::cerr << "runout: cannot write the output: " << e.what() << "\n";
@@ -75,9 +86,13 @@ int run(const Scene& s, const std::string& out, bool quiet) {
   }
   progress.finish();
   const double rate = r.wall_seconds > 0 ? r.particles * double(r.steps) / r.wall_seconds : 0;
-  std::printf("%s: %d particles, %ld steps to t = %.4g s in %.2f s (%.3g particle-steps/s, %d threads)\n",
-              s.name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds, rate,
-              omp_get_max_threads());
+  if (s.method == Method::Dam)
+    std::printf("%s (depth-averaged): %d elements, %ld steps to t = %.4g s in %.3f s\n",
+                s.name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds);
+  else
+    std::printf("%s: %d particles, %ld steps to t = %.4g s in %.2f s (%.3g particle-steps/s, %d threads)\n",
+                s.name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds, rate,
+                omp_get_max_threads());
   if (r.at_rest) std::printf("the slide came to rest at t = %.4g s\n", r.end_time);
   std::printf("output: %s (%d frames)\n", r.pvd_path.c_str(), r.frames);
   if (r.failed) {

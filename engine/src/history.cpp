@@ -19,17 +19,24 @@ HistoryWriter::HistoryWriter(const std::string& path)
 
 HistoryWriter::~HistoryWriter() { std::fclose(file_); }
 
-void HistoryWriter::append(const Simulation& sim, const SlideMorphology& m, double runout) {
-  const ParticleTotals t = particle_totals(sim.particles());
+void HistoryWriter::append(const HistoryRow& r) {
   const int ok = std::fprintf(
       file_,
       "%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
       "%.17g,%.17g,%.17g,%.17g,%.17g\n",
-      sim.time(), sim.steps(), sim.last_dt(), m.toe_s, m.toe_velocity, runout, m.rear_s,
-      m.length, m.max_thickness, m.centroid_x, m.centroid_y, m.centroid_s,
-      m.centroid_velocity_s, m.max_speed, m.kinetic_energy, sim.basal_shear_force(),
-      m.outside_mass, t.momentum_x, t.momentum_y);
+      r.time, r.step, r.dt, r.toe, r.toe_velocity, r.runout, r.rear, r.length,
+      r.max_thickness, r.centroid_x, r.centroid_y, r.centroid_s, r.centroid_velocity,
+      r.max_speed, r.kinetic_energy, r.basal_shear_force, r.outside_mass, r.momentum_x,
+      r.momentum_y);
   if (ok < 0 || std::fflush(file_) != 0) throw std::runtime_error("cannot write '" + path_ + "'");
+}
+
+void HistoryWriter::append(const Simulation& sim, const SlideMorphology& m, double runout) {
+  const ParticleTotals t = particle_totals(sim.particles());
+  append(HistoryRow{sim.time(), sim.steps(), sim.last_dt(), m.toe_s, m.toe_velocity, runout,
+                    m.rear_s, m.length, m.max_thickness, m.centroid_x, m.centroid_y,
+                    m.centroid_s, m.centroid_velocity_s, m.max_speed, m.kinetic_energy,
+                    sim.basal_shear_force(), m.outside_mass, t.momentum_x, t.momentum_y});
 }
 
 }  // namespace runout

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "runout/atomic_file.hpp"
+#include "runout/dam_output.hpp"
 #include "runout/history.hpp"
 #include "runout/morphology.hpp"
 #include "runout/scene_parser.hpp"
@@ -27,7 +28,7 @@ void clear_previous_output(const fs::path& dir) {
     const std::string name = entry.path().filename().string();
     const std::string ext = entry.path().extension().string();
     const bool profile = name.rfind("profile_", 0) == 0 && ext == ".csv";
-    if (ext == ".vtu" || ext == ".pvd" || profile || name == "history.csv" ||
+    if (ext == ".vtu" || ext == ".vtp" || ext == ".pvd" || profile || name == "history.csv" ||
         name == "scene.resolved.toml")
       fs::remove(entry.path());
   }
@@ -74,14 +75,55 @@ class RestDetector {
   double peak_ = 0.0, since_ = -1.0;
 };
 
-}  // namespace
+using Clock = std::chrono::steady_clock;
 
-RunSummary run_scene(const Scene& scene, const RunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The output folder, emptied of an earlier run's files, with the resolved
+// scene in it.
+fs::path prepare_folder(const Scene& scene, const RunOptions& options) {
   const fs::path dir(options.out_dir);
   fs::create_directories(dir);
   clear_previous_output(dir);
   write_file_atomically((dir / "scene.resolved.toml").string(), to_toml(scene));
+  return dir;
+}
+
+// The schedule every method follows: a history row every output interval /
+// kHistoryPerFrame, a frame every output interval, at the end and at rest.
+// record() appends a row and says whether the slide is at rest.
+template <class Model, class Record, class WriteFrame>
+void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_point start,
+                  Model& model, Record record, WriteFrame write_frame, RunSummary& summary) {
+  write_frame();
+  record();
+  const double dt_history = scene.time.output_interval / kHistoryPerFrame;
+  const long rows = std::lround(std::ceil(scene.time.end / dt_history - 1e-9));
+  try {
+    for (long k = 1; k <= rows; ++k) {
+      model.advance_to(std::min(scene.time.end, k * dt_history));
+      summary.at_rest = record();
+      if (k % kHistoryPerFrame == 0 || k == rows || summary.at_rest) write_frame();
+      if (options.on_progress)
+        options.on_progress({model.time(), scene.time.end, model.steps(), seconds_since(start)});
+      if (summary.at_rest) break;
+    }
+  } catch (const NumericalFailure& e) {
+    summary.failed = true;
+    summary.failure = e.what();
+  }
+  summary.steps = model.steps();
+  summary.end_time = model.time();
+  summary.wall_seconds = seconds_since(start);
+}
+
+}  // namespace
+
+RunSummary run_scene(const Scene& scene, const RunOptions& options) {
+  const auto start = Clock::now();
+  const fs::path dir = prepare_folder(scene, options);
 
   Simulation sim(scene);
   const BaseView base = sim.base().view();
@@ -103,9 +145,6 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
                       slide_profile(sim.particles(), base, scene.grid.cell_size, spacing));
     pvd.add(sim.time(), numbered("frame", frame, "vtu"));
   };
-  const auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
   const double initial_toe = measure_slide(sim.particles(), base, spacing).toe_s;
   RestDetector rest(scene.time.rest_fraction, scene.time.rest_duration);
   const auto record = [&] {
@@ -113,27 +152,38 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     history.append(sim, shape, runout_distance(shape, initial_toe));
     return rest.at_rest(sim.time(), shape.kinetic_energy);
   };
+  run_schedule(scene, options, start, sim, record, write_frame, summary);
+  return summary;
+}
 
-  write_frame();
-  record();
-  const double dt_history = scene.time.output_interval / kHistoryPerFrame;
-  const long rows = std::lround(std::ceil(scene.time.end / dt_history - 1e-9));
-  try {
-    for (long k = 1; k <= rows; ++k) {
-      sim.advance_to(std::min(scene.time.end, k * dt_history));
-      summary.at_rest = record();
-      if (k % kHistoryPerFrame == 0 || k == rows || summary.at_rest) write_frame();
-      if (options.on_progress)
-        options.on_progress({sim.time(), scene.time.end, sim.steps(), elapsed()});
-      if (summary.at_rest) break;
-    }
-  } catch (const NumericalFailure& e) {
-    summary.failed = true;
-    summary.failure = e.what();
-  }
-  summary.steps = sim.steps();
-  summary.end_time = sim.time();
-  summary.wall_seconds = elapsed();
+RunSummary run_dam(const Scene& scene, const RunOptions& options) {
+  const auto start = Clock::now();
+  DamSolver dam(scene);  // before the folder: a scene it cannot run leaves none
+  const fs::path dir = prepare_folder(scene, options);
+
+  RunSummary summary;
+  summary.particles = dam.elements();
+  summary.pvd_path = (dir / (scene.name + ".pvd")).string();
+  PvdIndex pvd(summary.pvd_path);
+  HistoryWriter history((dir / "history.csv").string());
+  const std::vector<double> base_xy = base_polyline(scene);
+
+  const auto write_frame = [&] {
+    const int frame = summary.frames++;
+    write_dam_vtp((dir / numbered("frame", frame, "vtp")).string(), dam, base_xy,
+                  scene.output.compress);
+    write_profile_csv((dir / numbered("profile", frame, "csv")).string(), dam.time(),
+                      dam_profile(dam));
+    pvd.add(dam.time(), numbered("frame", frame, "vtp"));
+  };
+  const double initial_toe = dam.s().back();
+  RestDetector rest(scene.time.rest_fraction, scene.time.rest_duration);
+  const auto record = [&] {
+    const HistoryRow row = dam_history_row(dam, initial_toe);
+    history.append(row);
+    return rest.at_rest(row.time, row.kinetic_energy);
+  };
+  run_schedule(scene, options, start, dam, record, write_frame, summary);
   return summary;
 }
 

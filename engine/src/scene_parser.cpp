@@ -285,9 +285,10 @@ void snap_max_to_node(GridSpec& grid) {
 }
 
 void read_scene_info(TableReader r, Scene& scene) {
-  r.check_keys({"name", "description"});
+  r.check_keys({"name", "description", "method"});
   scene.name = r.need("name").string();
   if (auto v = r.find("description")) scene.description = v->string();
+  if (auto v = r.find("method")) scene.method = v->choice(scene_text::kMethodNames).value;
 }
 
 GridSpec read_grid(TableReader r) {
@@ -561,6 +562,15 @@ void free_bottom_for_base(const TableReader& boundary_table, BoundarySpec& bound
   boundary.bottom = BoundaryKind::Free;
 }
 
+DamSpec read_dam(TableReader r) {
+  r.check_keys({"shear_rate", "elements", "min_shear_layer"});
+  DamSpec dam;
+  if (auto v = r.find("shear_rate")) dam.shear_rate = v->choice(scene_text::kShearRateNames).value;
+  if (auto v = r.find("elements")) dam.elements = v->integer(at_least(0));
+  if (auto v = r.find("min_shear_layer")) dam.min_shear_layer = v->number(between(0, 1, "(]"));
+  return dam;
+}
+
 OutputSpec read_output(TableReader r) {
   r.check_keys({"compress"});
   OutputSpec output;
@@ -608,7 +618,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   const toml::table root_table = parse_toml(text, source_name);
   const TableReader root(root_table, "", source_name, 1);
   root.check_keys({"scene", "grid", "boundary", "time", "gravity", "solver",
-                   "material", "body", "base", "output", "run"});
+                   "material", "body", "base", "dam", "output", "run"});
   Scene scene;
   read_scene_info(root.need("scene").table(), scene);
   scene.grid = read_grid(root.need("grid").table());
@@ -623,6 +633,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   scene.solver = read_solver(root.optional_table("solver"));
   scene.materials = read_materials(root);
   scene.bodies = read_bodies(root, scene.materials, scene.grid);
+  scene.dam = read_dam(root.optional_table("dam"));
   scene.output = read_output(root.optional_table("output"));
   scene.overrides = read_run(root.optional_table("run"));
   return scene;
@@ -656,6 +667,33 @@ void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optiona
     check_override("--end", *end_time, at_least(scene.time.output_interval));
     scene.time.end = *end_time;
     scene.overrides.push_back("time.end = " + format_number(*end_time));
+  }
+}
+
+void apply_method_overrides(Scene& scene, const std::optional<std::string>& method,
+                            const std::optional<std::string>& shear_rate,
+                            std::optional<int> elements) {
+  // The names are checked as the parser checks them, against the same table.
+  const auto lookup = [](const char* flag, const auto& names, const std::string& text) {
+    std::string allowed;
+    for (const auto& entry : names) {
+      if (entry.name == text) return entry.value;
+      allowed += (allowed.empty() ? "" : ", ") + in_quotes(entry.name);
+    }
+    throw_error("", 0, flag, "must be one of " + allowed + " (got " + in_quotes(text) + ")");
+  };
+  if (method) {
+    scene.method = lookup("--method", scene_text::kMethodNames, *method);
+    scene.overrides.push_back("scene.method = " + in_quotes(*method));
+  }
+  if (shear_rate) {
+    scene.dam.shear_rate = lookup("--shear-rate", scene_text::kShearRateNames, *shear_rate);
+    scene.overrides.push_back("dam.shear_rate = " + in_quotes(*shear_rate));
+  }
+  if (elements) {
+    check_override("--elements", *elements, at_least(0));
+    scene.dam.elements = *elements;
+    scene.overrides.push_back("dam.elements = " + std::to_string(*elements));
   }
 }
 

@@ -40,6 +40,10 @@ inline constexpr Named<InterfaceKind> kInterfaceNames[] = {
     {"frictional", InterfaceKind::Frictional},
     {"coulomb", InterfaceKind::Coulomb}};
 
+inline constexpr Named<Method> kMethodNames[] = {{"mpm", Method::Mpm}, {"dam", Method::Dam}};
+inline constexpr Named<ShearRateEstimate> kShearRateNames[] = {
+    {"linear", ShearRateEstimate::Linear}, {"plug", ShearRateEstimate::Plug}};
+
 template <class Value, std::size_t N>
 std::string_view name_of(const Named<Value> (&names)[N], Value value) {
   for (const auto& entry : names)

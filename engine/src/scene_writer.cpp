@@ -131,7 +131,8 @@ std::string to_toml(const Scene& scene) {
   out << "# Resolved scene: every default filled in.\n"
       << "[scene]\n"
       << "name = " << quoted(scene.name) << "\n"
-      << "description = " << quoted(scene.description) << "\n\n";
+      << "description = " << quoted(scene.description) << "\n"
+      << "method = " << quoted(name_of(scene_text::kMethodNames, scene.method)) << "\n\n";
 
   const GridSpec& grid = scene.grid;
   out << "[grid]\n"
@@ -167,6 +168,12 @@ std::string to_toml(const Scene& scene) {
   for (const MaterialSpec& m : scene.materials) write_material(out, m);
   for (const BodySpec& body : scene.bodies) write_body(out, body, scene.materials);
   write_base(out, scene.base);
+
+  out << "[dam]\n"
+      << "shear_rate = " << quoted(name_of(scene_text::kShearRateNames, scene.dam.shear_rate))
+      << "\n"
+      << "elements = " << scene.dam.elements << "\n"
+      << "min_shear_layer = " << number(scene.dam.min_shear_layer) << "\n\n";
 
   out << "[output]\n"
       << "compress = " << (scene.output.compress ? "true" : "false") << "\n\n"

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "runout/materials.hpp"
 #include "runout/seeding.hpp"
 
 namespace runout {
@@ -47,14 +48,7 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
 
 std::vector<MaterialParams> make_materials(const Scene& s) {
   std::vector<MaterialParams> out;
-  for (const auto& m : s.materials) {
-    MaterialParams params = elastic_params(m.density, m.youngs_modulus, m.poisson_ratio);
-    params.model = m.model;
-    if (m.model == MaterialModel::Tresca)
-      params.strength = {m.su0, 1.0 / m.sensitivity, m.xi95, m.eta, m.rate_exponent,
-                         m.reference_rate, m.strength_form};
-    out.push_back(params);
-  }
+  for (const auto& m : s.materials) out.push_back(material_params(m));
   return out;
 }
 

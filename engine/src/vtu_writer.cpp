@@ -1,104 +1,20 @@
 // The particle frame as a VTK XML UnstructuredGrid, every array inline
-// binary. Layout checked against VTK 9.2's own writer (vtkXMLWriter with
-// SetDataModeToBinary, header_type UInt64) and read back by
-// vtkXMLUnstructuredGridReader in tests/test_vtu_readback.cpp.
-#include <zlib.h>
-
-#include <algorithm>
+// binary (vtk_xml.hpp), read back by vtkXMLUnstructuredGridReader in
+// tests/test_vtu_readback.cpp.
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <stdexcept>
 
 #include "runout/atomic_file.hpp"
-#include "runout/base64.hpp"
+#include "runout/vtk_xml.hpp"
 #include "runout/vtu_writer.hpp"
 
 namespace runout {
 
 namespace {
 
-// The arrays are the host's memory as is, and the header says LittleEndian.
-static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "VTU writer assumes a little-endian host");
-
-template <class T> struct VtkType;
-template <> struct VtkType<double> { static constexpr const char* name = "Float64"; };
-template <> struct VtkType<std::int32_t> { static constexpr const char* name = "Int32"; };
-template <> struct VtkType<std::int64_t> { static constexpr const char* name = "Int64"; };
-template <> struct VtkType<std::uint8_t> { static constexpr const char* name = "UInt8"; };
-
-// VTK's own block size. Level 1: simulation doubles barely compress at any
-// level; the gain (ids, zero components, uniform arrays) comes at level 1
-// already, at a fraction of the default level's time.
-constexpr std::size_t kBlockSize = 32768;
-constexpr int kZlibLevel = Z_BEST_SPEED;
-
-std::string encode_raw(const void* data, std::size_t size) {
-  // base64 of (UInt64 byte count, bytes) as one run.
-  const std::uint64_t header = size;
-  std::string raw(sizeof header + size, '\0');
-  std::memcpy(&raw[0], &header, sizeof header);
-  if (size > 0) std::memcpy(&raw[sizeof header], data, size);
-  return base64_encode(raw.data(), raw.size());
-}
-
-std::string encode_zlib(const void* data, std::size_t size) {
-  // UInt64 header [blocks, block size, size of the last block (0 when it is
-  // full), compressed size of each block], then the compressed blocks back
-  // to back: two separate base64 runs, as vtkXMLDataParser reads them.
-  const auto* in = static_cast<const Bytef*>(data);
-  const std::size_t blocks = (size + kBlockSize - 1) / kBlockSize;
-  std::vector<std::uint64_t> header{blocks, kBlockSize, size % kBlockSize};
-  std::string compressed;
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t block = std::min(kBlockSize, size - b * kBlockSize);
-    const std::size_t at = compressed.size();
-    uLongf written = compressBound(block);
-    compressed.resize(at + written);
-    if (compress2(reinterpret_cast<Bytef*>(&compressed[at]), &written,
-                  in + b * kBlockSize, block, kZlibLevel) != Z_OK) {
-      throw std::runtime_error("zlib failed to compress a VTU array");
-    }
-    compressed.resize(at + written);
-    header.push_back(written);
-  }
-  return base64_encode(header.data(), header.size() * sizeof(std::uint64_t)) +
-         base64_encode(compressed.data(), compressed.size());
-}
-
-// Appends one <DataArray> holding values as tuples of `components`; the only
-// path by which any array reaches the file.
-template <class T>
-void append_array(std::string& xml, const char* indent, const char* name,
-                  int components, const std::vector<T>& values, bool compress) {
-  const std::size_t bytes = values.size() * sizeof(T);
-  xml += indent;
-  xml += "<DataArray type=\"";
-  xml += VtkType<T>::name;
-  xml += "\" Name=\"";
-  xml += name;
-  xml += "\" NumberOfComponents=\"" + std::to_string(components) +
-         "\" NumberOfTuples=\"" + std::to_string(values.size() / components) +
-         "\" format=\"binary\">\n";
-  xml += indent;
-  xml += "  ";
-  xml += compress ? encode_zlib(values.data(), bytes) : encode_raw(values.data(), bytes);
-  xml += '\n';
-  xml += indent;
-  xml += "</DataArray>\n";
-}
-
-// Per-particle tuples of K components, interleaved as VTK stores them.
-template <std::size_t K, class TupleOf>
-std::vector<double> tuples(int n, TupleOf tuple_of) {
-  std::vector<double> out(static_cast<std::size_t>(n) * K);
-  for (int i = 0; i < n; ++i) {
-    const std::array<double, K> t = tuple_of(i);
-    std::copy(t.begin(), t.end(), out.begin() + static_cast<std::ptrdiff_t>(i) * K);
-  }
-  return out;
-}
+using vtk_xml::append_array;
+using vtk_xml::tuples;
 
 // Stress invariants, tension positive, plane strain (szz carried):
 //   mean_stress       p     = (sxx + syy + szz) / 3
@@ -127,22 +43,14 @@ void write_particles_vtu(const std::string& path, const Particles& p,
   static_assert(sizeof(int) == sizeof(std::int32_t), "body and material ids are written as Int32");
   const int n = p.size();
 
-  std::string xml =
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
-      "byte_order=\"LittleEndian\" header_type=\"UInt64\"";
-  if (compress) xml += " compressor=\"vtkZLibDataCompressor\"";
-  xml += ">\n  <UnstructuredGrid>\n    <FieldData>\n";
+  std::string xml = vtk_xml::file_header("UnstructuredGrid", compress);
+  xml += "  <UnstructuredGrid>\n    <FieldData>\n";
   append_array(xml, "      ", "TimeValue", 1, std::vector<double>{info.time}, compress);
   if (info.particle_spacing > 0)
     append_array(xml, "      ", "particle_spacing", 1,
                  std::vector<double>{info.particle_spacing}, compress);
-  if (!info.base_xy.empty()) {
-    const int points = static_cast<int>(info.base_xy.size() / 2);
-    append_array(xml, "      ", "base_points", 3, tuples<3>(points, [&](int i) {
-                   return std::array<double, 3>{info.base_xy[2 * i], info.base_xy[2 * i + 1], 0.0};
-                 }), compress);
-  }
+  if (!info.base_xy.empty())
+    append_array(xml, "      ", "base_points", 3, vtk_xml::base_points(info.base_xy), compress);
   xml += "    </FieldData>\n    <Piece NumberOfPoints=\"" + std::to_string(n) +
          "\" NumberOfCells=\"" + std::to_string(n) + "\">\n      <PointData>\n";
 

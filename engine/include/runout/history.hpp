@@ -2,6 +2,7 @@
 // history.csv: one row per history time, appended and flushed as the run
 // goes, so a killed run keeps every row it computed. Columns in
 // docs/output.md; the morphology ones are defined in docs/morphology.md.
+// Every method (MPM, the depth-averaged model) writes the same columns.
 #include <cstdio>
 #include <string>
 
@@ -10,6 +11,17 @@
 
 namespace runout {
 
+// One row, in column order.
+struct HistoryRow {
+  double time = 0;
+  long step = 0;
+  double dt = 0;
+  double toe = 0, toe_velocity = 0, runout = 0, rear = 0, length = 0, max_thickness = 0;
+  double centroid_x = 0, centroid_y = 0, centroid_s = 0, centroid_velocity = 0;
+  double max_speed = 0, kinetic_energy = 0, basal_shear_force = 0, outside_mass = 0;
+  double momentum_x = 0, momentum_y = 0;
+};
+
 class HistoryWriter {
  public:
   explicit HistoryWriter(const std::string& path);  // writes the header
@@ -17,7 +29,8 @@ class HistoryWriter {
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
 
-  // runout: toe displacement along the base since t = 0.
+  void append(const HistoryRow& row);
+  // The MPM row; runout: toe displacement along the base since t = 0.
   void append(const Simulation& sim, const SlideMorphology& shape, double runout);
 
  private:

@@ -14,5 +14,10 @@ enum class StrengthForm { Additive, Multiplicative };
 // stress tau (frictional, as in SCENES.md) or Coulomb friction mu.
 enum class InterfaceKind { NoSlip, Frictional, Coulomb };
 enum class BaseKind { None, Planar, Polyline };
+// The method a scene runs with: the material point method or the
+// depth-averaged model (docs/dam.md), and the latter's basal shear strain
+// rate estimate.
+enum class Method { Mpm, Dam };
+enum class ShearRateEstimate { Linear, Plug };
 
 }  // namespace runout

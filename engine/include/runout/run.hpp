@@ -20,7 +20,7 @@ struct RunOptions {
 };
 
 struct RunSummary {
-  int particles = 0;
+  int particles = 0;  // elements for the depth-averaged model
   long steps = 0;
   int frames = 0;
   double end_time = 0;
@@ -36,5 +36,10 @@ struct RunSummary {
 // the index lists only those frames. Throws std::runtime_error when the
 // output cannot be written.
 RunSummary run_scene(const Scene& scene, const RunOptions& options);
+
+// The same run with the depth-averaged model (dam.hpp; scene.method = dam): the same folder
+// layout, history columns and schedule, the frames frame_NNNNN.vtp. Throws
+// SceneError, before any output is written, for a scene it cannot run.
+RunSummary run_dam(const Scene& scene, const RunOptions& options);
 
 }  // namespace runout

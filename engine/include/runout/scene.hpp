@@ -84,6 +84,14 @@ struct BaseSpec {
   double friction = 0.0;           // mu, Coulomb
 };
 
+// The depth-averaged model (docs/dam.md); read by it alone.
+struct DamSpec {
+  // Linear: 2 |v| / h; Plug: |v| / (h_s (1 - h_s / (2 h))), h_s the sheared layer.
+  ShearRateEstimate shear_rate = ShearRateEstimate::Linear;
+  int elements = 0;              // 0: the body's initial length over grid.cell_size
+  double min_shear_layer = 0.1;  // Plug: h_s >= min_shear_layer h
+};
+
 struct OutputSpec {
   bool compress = true;  // zlib inside the inline base64 arrays
 };
@@ -91,6 +99,7 @@ struct OutputSpec {
 struct Scene {
   std::string name;
   std::string description;
+  Method method = Method::Mpm;
   GridSpec grid;
   BoundarySpec boundary;
   TimeSpec time;
@@ -99,6 +108,7 @@ struct Scene {
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   BaseSpec base;
+  DamSpec dam;
   OutputSpec output;
   // Command-line overrides applied after parsing, as "key = value" lines, so
   // the resolved scene written beside the frames says how it was run.

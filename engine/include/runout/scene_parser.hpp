@@ -43,6 +43,12 @@ std::string_view default_scene_toml();
 
 // Command-line overrides (--cell, --ppc, --end); each one is recorded in
 // scene.overrides. Throws SceneError for an impossible value.
+// --method, --shear-rate and --elements: scene.method, dam.shear_rate and
+// dam.elements, by the names the scene file uses; recorded like the others.
+// Throws SceneError for an unknown name or a negative count.
+void apply_method_overrides(Scene& scene, const std::optional<std::string>& method,
+                            const std::optional<std::string>& shear_rate,
+                            std::optional<int> elements);
 void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optional<int> ppc,
                      std::optional<double> end_time = std::nullopt);
 

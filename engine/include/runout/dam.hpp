@@ -1,0 +1,104 @@
+#pragma once
+// The depth-averaged model (DAM): the slide as a chain of 1D Lagrangian
+// elements along the rigid base, a fast second opinion next to the MPM
+// (docs/dam.md has the equations, their discretisation and sources).
+//
+// Nodes 0..N sit on the base at along-base coordinates s_i (x on a planar
+// base, arc length on a polyline) and move with their layer-averaged
+// velocity v_i. Element e lies between nodes e and e + 1 and keeps its
+// volume V_e (area per unit width) for ever, so mass is conserved exactly;
+// its thickness is h_e = V_e / (s_{e+1} - s_e). Per node, per unit width:
+//
+//   M_i dv_i/dt = sum_e m_e g_t,e / 2            gravity along the local slope
+//               + P_{i-1} - P_i,  P_e = rho g_n,e h_e^2 / 2   (pressure gradient)
+//               - sum_e tau_e l_e / 2 sign(v_i)  basal resistance
+//
+// with tau_e from the strength law of strength.hpp at the element's
+// accumulated basal shear strain xi_e and its shear strain rate estimate
+// (scene.dam, docs/dam.md "Shear strain rate"):
+//   Linear: a linear velocity profile from rest at the base, 2 |v| / h;
+//   Plug:   a sheared layer h_s = h (1 - tau_y / tau_d) under a rigid plug
+//           (Bingham), |v| / (h_s (1 - h_s / (2 h))).
+#include <vector>
+
+#include "runout/base.hpp"
+#include "runout/polygon.hpp"
+#include "runout/scene.hpp"
+#include "runout/strength.hpp"
+
+namespace runout {
+
+// The limiting shear stress on the base of an element of the given
+// thickness: the strength law (no-slip: failure in the layer at its base),
+// capped by the interface (frictional tau, Coulomb mu sigma_n).
+struct BasalLaw {
+  InterfaceKind interface = InterfaceKind::NoSlip;
+  double tau = 0;           // Frictional
+  double mu = 0;            // Coulomb
+  bool has_strength = false;  // false: an elastic material, which never fails
+  StrengthParams strength;
+
+  double resistance(double xi, double gamma_dot, double normal_stress) const;
+};
+
+// Thickness of the polygon above the base point at s, measured along the
+// base normal: the length of the normal ray from the base inside the polygon.
+double thickness_along_normal(const Polygon& polygon, const BaseView& base, double s);
+
+class DamSolver {
+ public:
+  // The slide is the first body of the scene; scene.dam sets the elements
+  // and the shear rate estimate. Throws SceneError when the scene has no
+  // [base] (the model runs along one) or the body is empty somewhere along it.
+  explicit DamSolver(const Scene& scene);
+
+  void step(double dt);          // throws NumericalFailure
+  void advance_to(double t);     // stable steps, the last one landing on t
+  double stable_dt() const;      // CFL: courant l_e / (sqrt(g_n h_e) + |v| + viscous speed)
+
+  int elements() const { return static_cast<int>(volume_.size()); }
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  double last_dt() const { return last_dt_; }
+  double density() const { return density_; }
+  BaseView base() const { return base_.view(); }
+
+  // Nodes.
+  const std::vector<double>& s() const { return s_; }
+  const std::vector<double>& v() const { return v_; }
+  const std::vector<double>& node_mass() const { return node_mass_; }
+  // Elements: constant volume; the last step's basal state.
+  const std::vector<double>& volume() const { return volume_; }
+  const std::vector<double>& xi() const { return xi_; }
+  const std::vector<double>& gamma_dot() const { return gamma_dot_; }
+  const std::vector<double>& tau() const { return tau_; }
+  double length(int e) const { return s_[e + 1] - s_[e]; }
+  double thickness(int e) const { return volume_[e] / length(e); }
+  double mid(int e) const { return 0.5 * (s_[e] + s_[e + 1]); }
+  double element_velocity(int e) const { return 0.5 * (v_[e] + v_[e + 1]); }
+  double basal_shear_force() const;  // sum tau_e l_e [N/m]
+
+ private:
+  struct Slope {
+    double g_t, g_n;  // gravity along the base tangent and into the base
+  };
+  Slope slope_at(double s) const;
+  double viscous_force(int e) const;
+  std::vector<double> driving_forces() const;
+  void update_basal_state(const std::vector<double>& drive, double dt);
+  void update_velocities(const std::vector<double>& drive, double dt);
+  void move_nodes(double dt);
+
+  Base base_;
+  Eigen::Vector2d gravity_;
+  BasalLaw law_;
+  DamSpec options_;
+  double density_ = 0, courant_ = 0;
+  std::vector<double> s_, v_, node_mass_;
+  std::vector<double> volume_, xi_, gamma_dot_, tau_;
+  std::vector<Slope> slopes_;  // at each element's mid-point, for the current nodes
+  double time_ = 0, last_dt_ = 0;
+  long steps_ = 0;
+};
+
+}  // namespace runout

@@ -1,0 +1,14 @@
+#pragma once
+// From a scene's material (host) to the plain parameter records the solvers
+// use, in one place for the MPM and the depth-averaged method.
+#include "runout/material.hpp"
+#include "runout/scene.hpp"
+
+namespace runout {
+
+// The strength law of a Tresca material (d_rem = 1 / St); for an elastic one
+// a law without softening or rate effect.
+StrengthParams strength_params(const MaterialSpec& m);
+MaterialParams material_params(const MaterialSpec& m);
+
+}  // namespace runout
