@@ -135,3 +135,19 @@ TEST_F(Cli, RunWritesFramesIndexHistoryAndResolvedScene) {
   for (const auto& e : fs::directory_iterator(out))
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left";
 }
+
+TEST_F(Cli, BackendIsCheckedBeforeAnyOutput) {
+  const std::string scene = write("small.toml", kSmallScene);
+  EXPECT_EQ(run_cli("run " + scene + " --backend gpu").code, 64);
+  // Without a usable device (or CUDA in the build) the cuda backend is
+  // refused with 69 and leaves no folder; with one it runs.
+  const fs::path out = dir_ / "out";
+  const Result r = run_cli("run " + scene + " --backend cuda -q --out " + out.string());
+  if (r.code == 69) {
+    EXPECT_NE(r.output.find("--backend cuda"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+  } else {
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(out / "small.pvd"));
+  }
+}

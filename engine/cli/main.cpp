@@ -1,6 +1,7 @@
 // runout: the command line. Exit codes follow sysexits(3): 64 usage, 65 the
 // scene is invalid, 66 the scene file cannot be read, 70 the run blew up
-// (frames before it are kept), 73 the output cannot be written.
+// (frames before it are kept), 69 the backend asked for cannot run here, 73
+// the output cannot be written.
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
@@ -13,12 +14,23 @@
 #include "runout/run.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
+#ifdef RUNOUT_HAVE_CUDA
+#include "runout/cuda_simulation.hpp"
+#endif
 
 namespace {
 
 using namespace runout;
 
-enum Exit { kOk = 0, kUsage = 64, kSceneInvalid = 65, kNoScene = 66, kBlowUp = 70, kCantCreate = 73 };
+enum Exit {
+  kOk = 0,
+  kUsage = 64,
+  kSceneInvalid = 65,
+  kNoScene = 66,
+  kUnavailable = 69,
+  kBlowUp = 70,
+  kCantCreate = 73
+};
 
 struct SceneArgs {
   std::string path;  // empty: the built-in default scene
@@ -68,14 +80,37 @@ int check(const Scene& s) {
   return kOk;
 }
 
-int run(const Scene& s, const std::string& out, bool quiet) {
+// The run of the scene's method on the chosen backend, or null with the
+// reason when that backend cannot run here.
+using Runner = RunSummary (*)(const Scene&, const RunOptions&);
+Runner runner_for(const Scene& s, const std::string& backend, std::string& why_not) {
+  if (backend == "cpu") return s.method == Method::Dam ? run_dam : run_scene;
+  if (s.method == Method::Dam) {
+    why_not = "the depth-averaged model runs on the CPU only";
+    return nullptr;
+  }
+#ifdef RUNOUT_HAVE_CUDA
+  if (cuda_device_available(why_not)) return run_scene_cuda;
+#else
+  why_not = "this build has no CUDA";
+#endif
+  return nullptr;
+}
+
+int run(const Scene& s, const std::string& out, const std::string& backend, bool quiet) {
+  std::string why_not;
+  const Runner runner = runner_for(s, backend, why_not);
+  if (!runner) {
+    std::cerr << "runout: --backend " << backend << ": " << why_not << "\n";
+    return kUnavailable;
+  }
   RunOptions opt;
   opt.out_dir = out.empty() ? "out/" + s.name : out;
   ProgressReporter progress;
   if (!quiet) opt.on_progress = [&](const RunProgress& p) { progress.update(p); };
   RunSummary r;
   try {
-    r = s.method == Method::Dam ? run_dam(s, opt) : run_scene(s, opt);
+    r = runner(s, opt);
   } catch (const SceneError&) {
     progress.finish();
     throw;  // a scene the method cannot run: main's exit code for it
@@ -129,6 +164,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
+  std::string backend = "cpu";
+  run_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
   CLI::App* check_cmd =
       app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
   add_scene_args(check_cmd, check_args);
@@ -144,7 +182,7 @@ int main(int argc, char** argv) {
   }
   if (threads > 0) omp_set_num_threads(threads);
   try {
-    if (*run_cmd) return run(load(run_args), out, quiet);
+    if (*run_cmd) return run(load(run_args), out, backend, quiet);
     if (*check_cmd) return check(load(check_args));
     return info();
   } catch (const SceneFileError& e) {

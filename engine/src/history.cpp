@@ -31,12 +31,14 @@ void HistoryWriter::append(const HistoryRow& r) {
   if (ok < 0 || std::fflush(file_) != 0) throw std::runtime_error("cannot write '" + path_ + "'");
 }
 
-void HistoryWriter::append(const Simulation& sim, const SlideMorphology& m, double runout) {
-  const ParticleTotals t = particle_totals(sim.particles());
-  append(HistoryRow{sim.time(), sim.steps(), sim.last_dt(), m.toe_s, m.toe_velocity, runout,
-                    m.rear_s, m.length, m.max_thickness, m.centroid_x, m.centroid_y,
-                    m.centroid_s, m.centroid_velocity_s, m.max_speed, m.kinetic_energy,
-                    sim.basal_shear_force(), m.outside_mass, t.momentum_x, t.momentum_y});
+HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& m, double runout,
+                           double time, long step, double dt, double basal_shear_force) {
+  const ParticleTotals t = particle_totals(particles);
+  return HistoryRow{time,         step,           dt,           m.toe_s,
+                    m.toe_velocity, runout,       m.rear_s,     m.length,
+                    m.max_thickness, m.centroid_x, m.centroid_y, m.centroid_s,
+                    m.centroid_velocity_s, m.max_speed, m.kinetic_energy, basal_shear_force,
+                    m.outside_mass, t.momentum_x, t.momentum_y};
 }
 
 }  // namespace runout

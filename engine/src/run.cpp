@@ -1,159 +1,16 @@
 #include "runout/run.hpp"
 
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-
-#include "runout/atomic_file.hpp"
+#include "run_schedule.hpp"
 #include "runout/dam_output.hpp"
-#include "runout/history.hpp"
-#include "runout/morphology.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/simulation.hpp"
-#include "runout/vtu_writer.hpp"
 
 namespace runout {
-namespace fs = std::filesystem;
 
-namespace {
-
-// History rows come this many times per frame interval.
-constexpr int kHistoryPerFrame = 10;
-
-// A run replaces what an earlier run left in the same folder, so that no
-// stale frame of a longer run is left beside the new index.
-void clear_previous_output(const fs::path& dir) {
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    const std::string ext = entry.path().extension().string();
-    const bool profile = name.rfind("profile_", 0) == 0 && ext == ".csv";
-    if (ext == ".vtu" || ext == ".vtp" || ext == ".pvd" || profile || name == "history.csv" ||
-        name == "scene.resolved.toml")
-      fs::remove(entry.path());
-  }
-}
-
-std::string numbered(const char* stem, int frame, const char* ext) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%s_%05d.%s", stem, frame, ext);
-  return buf;
-}
-
-// The base as the polyline the frames carry: a planar base, and the grid's
-// bottom boundary of a scene without a base (which the morphology measures
-// along too), is the grid's bottom line across the domain.
-std::vector<double> base_polyline(const Scene& s) {
-  if (s.base.kind != BaseKind::Polyline)
-    return {s.grid.min.x(), s.grid.min.y(), s.grid.max.x(), s.grid.min.y()};
-  std::vector<double> xy;
-  for (const auto& p : s.base.points) {
-    xy.push_back(p.x());
-    xy.push_back(p.y());
-  }
-  return xy;
-}
-
-// Ends the run once the kinetic energy has stayed below fraction x its
-// peak for `duration` seconds (scene time.rest_*).
-class RestDetector {
- public:
-  RestDetector(double fraction, double duration) : fraction_(fraction), duration_(duration) {}
-  bool at_rest(double time, double kinetic_energy) {
-    if (fraction_ <= 0.0) return false;
-    peak_ = std::max(peak_, kinetic_energy);
-    if (peak_ <= 0.0 || kinetic_energy >= fraction_ * peak_) {
-      since_ = -1.0;
-      return false;
-    }
-    if (since_ < 0.0) since_ = time;
-    return time - since_ >= duration_;
-  }
-
- private:
-  double fraction_, duration_;
-  double peak_ = 0.0, since_ = -1.0;
-};
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// The output folder, emptied of an earlier run's files, with the resolved
-// scene in it.
-fs::path prepare_folder(const Scene& scene, const RunOptions& options) {
-  const fs::path dir(options.out_dir);
-  fs::create_directories(dir);
-  clear_previous_output(dir);
-  write_file_atomically((dir / "scene.resolved.toml").string(), to_toml(scene));
-  return dir;
-}
-
-// The schedule every method follows: a history row every output interval /
-// kHistoryPerFrame, a frame every output interval, at the end and at rest.
-// record() appends a row and says whether the slide is at rest.
-template <class Model, class Record, class WriteFrame>
-void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_point start,
-                  Model& model, Record record, WriteFrame write_frame, RunSummary& summary) {
-  write_frame();
-  record();
-  const double dt_history = scene.time.output_interval / kHistoryPerFrame;
-  const long rows = std::lround(std::ceil(scene.time.end / dt_history - 1e-9));
-  try {
-    for (long k = 1; k <= rows; ++k) {
-      model.advance_to(std::min(scene.time.end, k * dt_history));
-      summary.at_rest = record();
-      if (k % kHistoryPerFrame == 0 || k == rows || summary.at_rest) write_frame();
-      if (options.on_progress)
-        options.on_progress({model.time(), scene.time.end, model.steps(), seconds_since(start)});
-      if (summary.at_rest) break;
-    }
-  } catch (const NumericalFailure& e) {
-    summary.failed = true;
-    summary.failure = e.what();
-  }
-  summary.steps = model.steps();
-  summary.end_time = model.time();
-  summary.wall_seconds = seconds_since(start);
-}
-
-}  // namespace
+using namespace run_detail;
 
 RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const auto start = Clock::now();
-  const fs::path dir = prepare_folder(scene, options);
-
   Simulation sim(scene);
-  const BaseView base = sim.base().view();
-  const double spacing = sim.particle_spacing();
-  RunSummary summary;
-  summary.particles = sim.particles().size();
-  summary.pvd_path = (dir / (scene.name + ".pvd")).string();
-  PvdIndex pvd(summary.pvd_path);
-  HistoryWriter history((dir / "history.csv").string());
-  FrameInfo info{0.0, spacing, base_polyline(scene), {}};
-  for (const MaterialParams& m : sim.materials()) info.strengths.push_back(m.strength);
-
-  const auto write_frame = [&] {
-    const int frame = summary.frames++;
-    info.time = sim.time();
-    write_particles_vtu((dir / numbered("frame", frame, "vtu")).string(), sim.particles(), info,
-                        scene.output.compress);
-    write_profile_csv((dir / numbered("profile", frame, "csv")).string(), sim.time(),
-                      slide_profile(sim.particles(), base, scene.grid.cell_size, spacing));
-    pvd.add(sim.time(), numbered("frame", frame, "vtu"));
-  };
-  const double initial_toe = measure_slide(sim.particles(), base, spacing).toe_s;
-  RestDetector rest(scene.time.rest_fraction, scene.time.rest_duration);
-  const auto record = [&] {
-    const SlideMorphology shape = measure_slide(sim.particles(), base, spacing);
-    history.append(sim, shape, runout_distance(shape, initial_toe));
-    return rest.at_rest(sim.time(), shape.kinetic_energy);
-  };
-  run_schedule(scene, options, start, sim, record, write_frame, summary);
-  return summary;
+  return run_mpm(scene, options, start, sim, [&]() -> const Particles& { return sim.particles(); });
 }
 
 RunSummary run_dam(const Scene& scene, const RunOptions& options) {

@@ -12,6 +12,7 @@
 #include "runout/base.hpp"
 #include "runout/material.hpp"
 #include "runout/particles.hpp"
+#include "runout/run.hpp"
 #include "runout/scene.hpp"
 #include "runout/simulation.hpp"  // NumericalFailure, StepConfig
 
@@ -58,5 +59,9 @@ class CudaSimulation {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// run_scene on the GPU (engine/cuda/run_cuda.cpp): the same folder, frames
+// and history.
+RunSummary run_scene_cuda(const Scene& scene, const RunOptions& options);
 
 }  // namespace runout

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "runout/morphology.hpp"
-#include "runout/simulation.hpp"
+#include "runout/particles.hpp"
 
 namespace runout {
 
@@ -22,6 +22,12 @@ struct HistoryRow {
   double momentum_x = 0, momentum_y = 0;
 };
 
+// The row of an MPM run (CPU or CUDA) from its particles on the host and
+// their morphology; runout: toe displacement along the base since t = 0.
+HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& shape,
+                           double runout, double time, long step, double dt,
+                           double basal_shear_force);
+
 class HistoryWriter {
  public:
   explicit HistoryWriter(const std::string& path);  // writes the header
@@ -30,8 +36,6 @@ class HistoryWriter {
   HistoryWriter& operator=(const HistoryWriter&) = delete;
 
   void append(const HistoryRow& row);
-  // The MPM row; runout: toe displacement along the base since t = 0.
-  void append(const Simulation& sim, const SlideMorphology& shape, double runout);
 
  private:
   std::string path_;
