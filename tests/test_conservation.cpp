@@ -100,3 +100,22 @@ TEST(Conservation, ScatterIsRepeatableAcrossThreadCounts) {
     ASSERT_EQ(a.particles().sxx[p], b.particles().sxx[p]);
   }
 }
+
+TEST(Conservation, PermutingParticlesMovesEveryFieldTogether) {
+  Simulation sim = random_block(ShapeKind::Gimp, 0.99);
+  Particles P = sim.particles();
+  const Particles before = P;
+  std::vector<int> order(P.size());
+  for (int k = 0; k < P.size(); ++k) order[k] = (7 * k + 3) % P.size();  // 7 is coprime with n
+  ASSERT_NE(P.size() % 7, 0);
+  P.permute(order);
+  for (int k = 0; k < P.size(); ++k) {
+    const int from = order[k];
+    ASSERT_EQ(P.id[k], before.id[from]);
+    ASSERT_EQ(P.x[k], before.x[from]);
+    ASSERT_EQ(P.vy[k], before.vy[from]);
+    ASSERT_EQ(P.sxy[k], before.sxy[from]);
+    ASSERT_EQ(P.y0[k], before.y0[from]);
+    ASSERT_EQ(P.material[k], before.material[from]);
+  }
+}

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "runout/diagnostics.hpp"
 #include "runout/simulation.hpp"
@@ -42,10 +43,14 @@ CutResult run_cut(double height, double seconds) {
   int crest = 0;
   for (int p = 1; p < P.size(); ++p)
     if (P.x[p] + P.y[p] > P.x[crest] + P.y[crest]) crest = p;
+  const std::int64_t crest_id = P.id[crest];  // the engine reorders particles in memory
   sim.advance_to(seconds);
-  double max_xi = 0;
-  for (int p = 0; p < P.size(); ++p) max_xi = std::max(max_xi, P.xi[p]);
-  return {(P.x[crest] - P.x0[crest]) / height, max_xi};
+  double max_xi = 0, crest_dx = 0;
+  for (int p = 0; p < P.size(); ++p) {
+    max_xi = std::max(max_xi, P.xi[p]);
+    if (P.id[p] == crest_id) crest_dx = P.x[p] - P.x0[p];
+  }
+  return {crest_dx / height, max_xi};
 }
 
 }  // namespace

@@ -11,6 +11,29 @@ void Particles::resize(int n) {
   id.assign(n, 0);
 }
 
+namespace {
+
+template <class T>
+void gather(std::vector<T>& a, const std::vector<int>& order, std::vector<T>& scratch) {
+  scratch.resize(a.size());
+  for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = a[order[k]];
+  a.swap(scratch);
+}
+
+}  // namespace
+
+void Particles::permute(const std::vector<int>& order) {
+  std::vector<double> d;
+  for (auto* a : {&x, &y, &vx, &vy, &mass, &vol0, &vol, &sxx, &syy, &sxy, &szz, &xi, &gamma_dot,
+                  &su, &x0, &y0})
+    gather(*a, order, d);
+  std::vector<int> i;
+  gather(body, order, i);
+  gather(material, order, i);
+  std::vector<std::int64_t> l;
+  gather(id, order, l);
+}
+
 ParticleView Particles::view() {
   return ParticleView{size(),        x.data(),    y.data(),   vx.data(),
                       vy.data(),     mass.data(), vol0.data(), vol.data(),

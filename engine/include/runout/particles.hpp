@@ -33,6 +33,8 @@ struct Particles {
   int size() const { return static_cast<int>(x.size()); }
   void resize(int n);
   ParticleView view();
+  // Reorders every array so that particle k becomes order[k].
+  void permute(const std::vector<int>& order);
 };
 
 }  // namespace runout
