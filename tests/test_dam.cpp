@@ -2,7 +2,6 @@
 // plastic arrest profile, exact mass conservation, convergence with the
 // number of elements, the shear strain rate estimates, and a CLI run.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include "runout/dam.hpp"
 #include "runout/polygon.hpp"
 #include "runout/scene_parser.hpp"
+#include "cli_runner.hpp"
 #include "scene_builders.hpp"
 
 namespace fs = std::filesystem;
@@ -176,23 +176,6 @@ TEST(Dam, InitialStateFollowsThePolygonOnAPolylineBase) {
   EXPECT_NEAR(dam.thickness(dam.elements() / 2), normal_thickness, 1e-6 * normal_thickness);
 }
 
-// The CLI, as tests/test_cli.cpp runs it.
-struct Result {
-  int code;
-  std::string output;
-};
-
-Result run_cli(const std::string& args) {
-  const char* cli = std::getenv("RUNOUT_CLI");
-  EXPECT_NE(cli, nullptr) << "RUNOUT_CLI is set by ctest";
-  FILE* pipe = popen((std::string(cli) + " " + args + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
 std::string read_text(const fs::path& p) {
   std::ifstream in(p);
   std::stringstream ss;
@@ -203,7 +186,7 @@ std::string read_text(const fs::path& p) {
 TEST(DamCli, EscarpmentWritesHistoryAndPvd) {
   const fs::path dir = fs::temp_directory_path() / "runout_dam_cli";
   fs::remove_all(dir);
-  const Result r = run_cli("run " RUNOUT_SOURCE_DIR "/scenes/escarpment.toml --method dam --cell 1.0 -q --out " +
+  const cli_runner::Result r = cli_runner::run_cli("run " RUNOUT_SOURCE_DIR "/scenes/escarpment.toml --method dam --cell 1.0 -q --out " +
                            dir.string());
   ASSERT_EQ(r.code, 0) << r.output;
   const std::string history = read_text(dir / "history.csv");
@@ -225,28 +208,8 @@ TEST(DamCli, SceneWithoutABaseIsRejected) {
   const fs::path dir = fs::temp_directory_path() / "runout_dam_cli_nobase";
   fs::remove_all(dir);
   const fs::path scene = fs::temp_directory_path() / "runout_dam_nobase.toml";
-  std::ofstream(scene) << R"([scene]
-name = "nobase"
-[grid]
-cell_size = 0.5
-min = [0.0, 0.0]
-max = [20.0, 5.0]
-[time]
-end = 0.2
-output_interval = 0.1
-[[material]]
-name = "clay"
-density = 600.0
-youngs_modulus = 1.0e5
-poisson_ratio = 0.3
-[[body]]
-name = "block"
-material = "clay"
-type = "rectangle"
-min = [1.0, 0.0]
-max = [5.0, 2.0]
-)";
-  const Result r = run_cli("run " + scene.string() + " --method dam -q --out " + dir.string());
+  std::ofstream(scene) << cli_runner::kSmallScene;  // it has no [base]
+  const cli_runner::Result r = cli_runner::run_cli("run " + scene.string() + " --method dam -q --out " + dir.string());
   EXPECT_EQ(r.code, 65) << r.output;
   EXPECT_FALSE(fs::exists(dir));
   fs::remove(scene);
