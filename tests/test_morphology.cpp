@@ -429,3 +429,29 @@ TEST(Morphology, SameResultTwice) {
 }
 
 }  // namespace
+
+// Particle columns pulled 1.5 bins apart by stretching leave bins that hold
+// only low particles or none: the closing puts the surface back on the
+// columns' tops, while a trough 6 bins wide (a graben) stays.
+TEST(SlideProfile, GapsBetweenStretchedColumnsAreClosedButGrabensStay) {
+  const double bin = 0.4;
+  std::vector<Seed> seeds;
+  for (int c = 0; c < 40; ++c) {
+    const double x = 0.6 * c;
+    if (x > 10.0 && x < 12.4) continue;  // the graben: no columns over 2.4 m
+    for (int r = 0; r < 5; ++r) seeds.push_back(Seed{x, 0.1 + 0.2 * r});
+  }
+  const Profile profile = slide_profile(make_particles(seeds), planar_base(0.0), bin, 0.2);
+  // Bins are centred on multiples of 0.4 m (the rear particle is at 0);
+  // the columns next to the graben are at 9.6 and 12.6 m.
+  int in_graben = 0;
+  for (const ProfileBin& b : profile.bins) {
+    if (b.s > 9.9 && b.s < 12.1) {
+      EXPECT_EQ(b.thickness, 0.0) << b.s;
+      ++in_graben;
+    } else if (b.s < 9.7 || b.s > 12.7) {
+      EXPECT_NEAR(b.thickness, 1.0, 1e-12) << b.s;
+    }
+  }
+  EXPECT_EQ(in_graben, 6);
+}

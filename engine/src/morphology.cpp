@@ -206,6 +206,29 @@ double runout_distance(const SlideMorphology& now, double initial_toe_s) {
   return now.toe_s - initial_toe_s;
 }
 
+// Morphological closing (a running max, then a running min, over 2 r + 1
+// bins) of a profile that is 0 outside the slide: fills troughs narrower
+// than about 2 r bins and leaves wider ones, the ends of the slide and
+// every convex stretch of surface as they were.
+std::vector<double> closed(const std::vector<double>& v, int r) {
+  const int pad = 2 * r;  // zeros beyond the ends, so that they stay ends
+  std::vector<double> in(v.size() + 2 * pad, 0.0);
+  std::copy(v.begin(), v.end(), in.begin() + pad);
+  const int n = static_cast<int>(in.size());
+  const auto sweep = [n, r](const std::vector<double>& a, bool take_max) {
+    std::vector<double> out(n);
+    for (int i = 0; i < n; ++i) {
+      double m = a[i];
+      for (int j = std::max(0, i - r); j <= std::min(n - 1, i + r); ++j)
+        m = take_max ? std::max(m, a[j]) : std::min(m, a[j]);
+      out[i] = m;
+    }
+    return out;
+  };
+  const std::vector<double> c = sweep(sweep(in, true), false);
+  return std::vector<double>(c.begin() + pad, c.end() - pad);
+}
+
 Profile slide_profile(const Particles& P, const BaseView& base, double bin_width,
                       double spacing) {
   require_positive(bin_width, "profile bin width");
@@ -213,6 +236,14 @@ Profile slide_profile(const Particles& P, const BaseView& base, double bin_width
   const std::vector<Located> located = locate_particles(P, base);
   const Binning binning = binning_over(located, bin_width);
   const std::vector<BinTotals> totals = bin_totals(P, located, binning);
+
+  std::vector<double> top(totals.size(), 0.0);
+  for (int k = 0; k < binning.count; ++k)
+    if (totals[k].particles > 0) top[k] = totals[k].max_d + 0.5 * spacing;
+  // A slide stretched to several times its length leaves its particle
+  // columns further apart than a bin, and the bins between hold only lower
+  // particles or none: a sawtooth that is not the surface.
+  top = closed(top, kProfileClosingBins);
 
   Profile profile;
   profile.bin_width = bin_width;
@@ -222,10 +253,8 @@ Profile slide_profile(const Particles& P, const BaseView& base, double bin_width
     ProfileBin& bin = profile.bins[k];
     bin.s = binning.centre(k);
     bin.particles = t.particles;
-    if (t.particles > 0) {
-      bin.thickness = t.max_d + 0.5 * spacing;
-      bin.velocity_s = t.momentum_s / t.mass;
-    }
+    bin.thickness = top[k];
+    if (t.particles > 0) bin.velocity_s = t.momentum_s / t.mass;
     const BaseFrame f = base_frame_at(base, bin.s);
     bin.x_surface = f.x + bin.thickness * f.nx;
     bin.y_surface = f.y + bin.thickness * f.ny;

@@ -83,11 +83,17 @@ struct Profile {
   std::vector<ProfileBin> bins;  // rear to front
 };
 
+// Troughs of the thickness profile narrower than about twice this many bins
+// are filled (a morphological closing): they are gaps between particle
+// columns that have moved apart, not the slide's surface.
+constexpr int kProfileClosingBins = 2;
+
 // Thickness profile of all particles, in bins of bin_width (> 0) along the
 // base, the first centred on the rear-most particle's s, the last holding
 // the front-most one. spacing: the particle spacing h / ppc (> 0). No
-// particles: no bins. A bin width of at least two spacings keeps bins from
-// falling empty between particles that have moved apart.
+// particles: no bins. A bin's thickness is the highest particle above the
+// base plus half a spacing, closed over kProfileClosingBins; a wider gap
+// keeps thickness 0.
 Profile slide_profile(const Particles& particles, const BaseView& base, double bin_width,
                       double spacing);
 
