@@ -71,7 +71,7 @@ TEST(SceneParser, DefaultSceneParses) {
   const Scene s = default_scene();
   EXPECT_EQ(s.name, "default");
   EXPECT_DOUBLE_EQ(s.grid.cell_size, 0.4);
-  EXPECT_EQ(s.grid.min, Eigen::Vector2d(-2.0, 0.0));
+  EXPECT_EQ(s.grid.min, Eigen::Vector2d(-30.0, 0.0));
   EXPECT_EQ(s.grid.max, Eigen::Vector2d(400.0, 10.0));
   EXPECT_EQ(s.grid.shape, ShapeKind::Gimp);
   EXPECT_EQ(s.grid.ppc, 2);
