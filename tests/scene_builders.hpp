@@ -31,6 +31,17 @@ inline Scene block_scene(Eigen::Vector2d body_min, Eigen::Vector2d body_max,
   return s;
 }
 
+// A column of width 1 m between slip walls on a fixed base, settling under
+// gravity g with local damping: the self-weight problem.
+inline Scene column_scene(double height, double h, double density, double youngs, double g) {
+  Scene s = block_scene({0.0, 0.0}, {1.0, height}, {0.0, 0.0}, {1.0, 2.0 * height}, h, 2,
+                        density, youngs, 0.3);
+  s.boundary = {BoundaryKind::Slip, BoundaryKind::Slip, BoundaryKind::Fixed, BoundaryKind::Free};
+  s.gravity.vector = {0.0, -g};
+  s.solver.damping = 0.5;
+  return s;
+}
+
 // Geostatic stress of a layer whose top is at y = top under the gravity
 // component g_normal into the base (sigma_yy = -rho g_n (top - y),
 // sigma_xx = sigma_zz = K0 sigma_yy), so that a test starts in equilibrium

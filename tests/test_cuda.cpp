@@ -19,6 +19,7 @@
 #include <cmath>
 #include <string>
 
+#include "free_fall.hpp"
 #include "runout/cuda_simulation.hpp"
 #include "runout/diagnostics.hpp"
 #include "runout/morphology.hpp"
@@ -86,26 +87,16 @@ TEST(Cuda, AgreesWithTheCpuOnCoarseCase1) {
 TEST(Cuda, FreeFallLandsOnTheParabola) {
   SKIP_WITHOUT_GPU();
   for (const ShapeKind shape : {ShapeKind::Gimp, ShapeKind::Linear}) {
-    Scene s = fixtures::block_scene({10.0, 30.0}, {12.0, 32.0}, {0.0, 0.0}, {40.0, 40.0}, 0.5, 2,
-                                   1000.0, 1e5, 0.3);
-    s.grid.shape = shape;
-    s.gravity.vector = {1.2, -9.81};
-    const Eigen::Vector2d v0(1.5, 2.0), g = s.gravity.vector;
-    s.bodies[0].velocity = v0;
+    const Scene s = fixtures::free_fall_scene(shape);
     CudaSimulation sim(s);
-    const double t = 1.7;
+    const double t = fixtures::kFreeFallTime;
     sim.advance_to(t);
     ASSERT_GT(sim.steps(), 20);
     EXPECT_EQ(sim.time(), t);
     Particles P;
     sim.download(P);
     ASSERT_GT(P.size(), 0);
-    for (int p = 0; p < P.size(); ++p) {
-      const Eigen::Vector2d exact = Eigen::Vector2d(P.x0[p], P.y0[p]) + v0 * t + 0.5 * g * t * t;
-      EXPECT_LE(std::fabs(P.x[p] - exact.x()), 1e-10 * std::fabs(exact.x())) << "particle " << p;
-      EXPECT_LE(std::fabs(P.y[p] - exact.y()), 1e-10 * std::fabs(exact.y())) << "particle " << p;
-      EXPECT_NEAR(P.vy[p], v0.y() + g.y() * t, 1e-10 * std::fabs(v0.y() + g.y() * t));
-    }
+    fixtures::expect_on_the_parabola(P, s, t);
   }
 }
 

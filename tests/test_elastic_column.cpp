@@ -23,12 +23,7 @@ namespace {
 constexpr double kH = 10.0, kRho = 1000.0, kG = 10.0;
 
 double column_error(double h) {
-  Scene s = fixtures::block_scene({0.0, 0.0}, {1.0, kH}, {0.0, 0.0}, {1.0, 2.0 * kH}, h, 2,
-                                  kRho, 1e7, 0.3);
-  s.boundary = {BoundaryKind::Slip, BoundaryKind::Slip, BoundaryKind::Fixed, BoundaryKind::Free};
-  s.gravity.vector = {0.0, -kG};
-  s.solver.damping = 0.5;
-  Simulation sim(s);
+  Simulation sim(fixtures::column_scene(kH, h, kRho, 1e7, kG));
   sim.advance_to(4.0);
   const Particles& P = sim.particles();
   EXPECT_LT(particle_totals(P).max_speed, 1e-6) << "column not settled";

@@ -27,12 +27,8 @@ constexpr double kRho = 1000.0, kG = 10.0, kH = 2.0;
 // (rho g H) over 0.2 H <= Y <= 0.8 H once settled.
 double soft_column_stress_error(ShapeKind shape) {
   const double height = 10.0;
-  Scene s = fixtures::block_scene({0.0, 0.0}, {1.0, height}, {0.0, 0.0}, {1.0, 2.0 * height},
-                                  0.5, 2, kRho, 3.7e5, 0.3);
+  Scene s = fixtures::column_scene(height, 0.5, kRho, 3.7e5, kG);
   s.grid.shape = shape;
-  s.boundary = {BoundaryKind::Slip, BoundaryKind::Slip, BoundaryKind::Fixed, BoundaryKind::Free};
-  s.gravity.vector = {0.0, -kG};
-  s.solver.damping = 0.5;
   Simulation sim(s);
   sim.advance_to(20.0);
   const Particles& P = sim.particles();
