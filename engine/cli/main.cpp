@@ -9,7 +9,9 @@
 #include <iostream>
 #include <optional>
 
+#include "budget_check.hpp"
 #include "progress.hpp"
+#include "study_command.hpp"
 #include "runout/device_info.hpp"
 #include "runout/run.hpp"
 #include "runout/scene_parser.hpp"
@@ -37,7 +39,7 @@ struct SceneArgs {
   std::optional<double> cell;
   std::optional<int> ppc;
   std::optional<double> end;
-  std::optional<std::string> method, shear_rate;
+  std::optional<std::string> method, shear_rate, shape;
   std::optional<int> elements;
 };
 
@@ -47,6 +49,7 @@ void add_scene_args(CLI::App* cmd, SceneArgs& a) {
   cmd->add_option("--ppc", a.ppc, "Override the particles per cell per direction");
   cmd->add_option("--end", a.end, "Override the end time [s]");
   cmd->add_option("--method", a.method, "Override the method: mpm or dam (depth-averaged)");
+  cmd->add_option("--shape", a.shape, "Override the MPM shape functions: gimp or linear");
   cmd->add_option("--shear-rate", a.shear_rate,
                   "Override the depth-averaged shear rate estimate: linear or plug");
   cmd->add_option("--elements", a.elements,
@@ -58,6 +61,7 @@ Scene load(const SceneArgs& a) {
                            : load_scene_file(a.path);
   apply_overrides(s, a.cell, a.ppc, a.end);
   apply_method_overrides(s, a.method, a.shear_rate, a.elements);
+  apply_shape_override(s, a.shape);
   return s;
 }
 
@@ -170,6 +174,14 @@ int main(int argc, char** argv) {
   CLI::App* check_cmd =
       app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
   add_scene_args(check_cmd, check_args);
+  std::optional<double> budget;
+  check_cmd->add_option("--budget", budget,
+                        "Estimate the finest cell size per method that runs within SECONDS "
+                        "here, and pick a method")
+      ->check(CLI::PositiveNumber);
+  StudyArgs study_args;
+  CLI::App* study_cmd = nullptr;
+  add_study_command(app, study_args, study_cmd);
   app.add_subcommand("info", "Version, threads and CUDA devices");
 
   try {
@@ -183,7 +195,9 @@ int main(int argc, char** argv) {
   if (threads > 0) omp_set_num_threads(threads);
   try {
     if (*run_cmd) return run(load(run_args), out, backend, quiet);
+    if (*check_cmd && budget) return budget_check(load(check_args), *budget);
     if (*check_cmd) return check(load(check_args));
+    if (*study_cmd) return run_study(study_args);
     return info();
   } catch (const SceneFileError& e) {
     std::cerr << "runout: " << e.what() << "\n";

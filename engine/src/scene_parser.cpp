@@ -670,18 +670,31 @@ void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optiona
   }
 }
 
+namespace {
+
+// A named value given on the command line, checked as the parser checks
+// it, against the same table.
+template <class Names>
+auto lookup(const char* flag, const Names& names, const std::string& text) {
+  std::string allowed;
+  for (const auto& entry : names) {
+    if (entry.name == text) return entry.value;
+    allowed += (allowed.empty() ? "" : ", ") + in_quotes(entry.name);
+  }
+  throw_error("", 0, flag, "must be one of " + allowed + " (got " + in_quotes(text) + ")");
+}
+
+}  // namespace
+
+void apply_shape_override(Scene& scene, const std::optional<std::string>& shape) {
+  if (!shape) return;
+  scene.grid.shape = lookup("--shape", scene_text::kShapeNames, *shape);
+  scene.overrides.push_back("grid.shape = " + in_quotes(*shape));
+}
+
 void apply_method_overrides(Scene& scene, const std::optional<std::string>& method,
                             const std::optional<std::string>& shear_rate,
                             std::optional<int> elements) {
-  // The names are checked as the parser checks them, against the same table.
-  const auto lookup = [](const char* flag, const auto& names, const std::string& text) {
-    std::string allowed;
-    for (const auto& entry : names) {
-      if (entry.name == text) return entry.value;
-      allowed += (allowed.empty() ? "" : ", ") + in_quotes(entry.name);
-    }
-    throw_error("", 0, flag, "must be one of " + allowed + " (got " + in_quotes(text) + ")");
-  };
   if (method) {
     scene.method = lookup("--method", scene_text::kMethodNames, *method);
     scene.overrides.push_back("scene.method = " + in_quotes(*method));

@@ -51,5 +51,8 @@ void apply_method_overrides(Scene& scene, const std::optional<std::string>& meth
                             std::optional<int> elements);
 void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optional<int> ppc,
                      std::optional<double> end_time = std::nullopt);
+// --shape: grid.shape by its scene-file name ("gimp", "linear"); recorded
+// like the others. Throws SceneError for an unknown name.
+void apply_shape_override(Scene& scene, const std::optional<std::string>& shape);
 
 }  // namespace runout

@@ -1,0 +1,134 @@
+#include "budget_check.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include "runout/dam.hpp"
+#include "runout/device_info.hpp"
+#include "runout/scene_parser.hpp"
+#include "runout/simulation.hpp"
+#include "runout/study.hpp"
+
+namespace runout {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Wall time of the calibration: long enough to average over many steps,
+// short enough that a check stays a check.
+constexpr double kCalibrationSeconds = 0.3;
+// The calibration cell: the scene's own, or coarser, with this many cells
+// across the slide's mean thickness at most.
+constexpr double kCalibrationCells = 8.0;
+
+struct Calibration {
+  study::CostModel model;
+  int size = 0;        // particles or elements at the calibration cell
+  double steps = 0;    // steps of the whole run at the calibration cell
+  double step_seconds = 0;
+};
+
+// Steps the model from the scene's start for kCalibrationSeconds of wall
+// time (after one step that warms the caches and sizes the grid), and
+// scales its wall time per step to the whole run: end / dt steps, dt the
+// CFL step of the start (the step falls a little as the slide speeds up,
+// and a run that comes to rest ends sooner).
+template <class Model>
+Calibration calibrate(Model& model, int size, double cell, double end, int dimension) {
+  model.step(model.stable_dt());
+  const auto start = Clock::now();
+  long steps = 0;
+  double wall = 0;
+  while (wall < kCalibrationSeconds) {
+    model.step(model.stable_dt());
+    ++steps;
+    wall = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  Calibration c;
+  c.size = size;
+  c.step_seconds = wall / steps;
+  c.steps = end / model.stable_dt();
+  c.model = {cell, c.step_seconds * c.steps, dimension};
+  return c;
+}
+
+void print_calibration(const char* method, const char* unit, const Calibration& c) {
+  std::printf("# calibration: %s at h = %.3g m: %d %s, %.3g ms per step, %.3g steps "
+              "-> %.3g s for the whole run\n",
+              method, c.model.cell, c.size, unit, 1e3 * c.step_seconds, c.steps, c.model.seconds);
+}
+
+// The finest cell in the budget and what it costs.
+double print_estimate(const char* label, const char* unit, const Calibration& c, double budget) {
+  const double h = study::finest_cell_for_budget(c.model, budget);
+  const double ratio = c.model.cell / h;
+  std::printf("%s finest cell %.3g m (about %.3g %s, %.3g steps, %.3g s)\n", label, h,
+              c.size * std::pow(ratio, c.model.dimension), unit, c.steps * ratio,
+              study::estimated_seconds(c.model, h));
+  return h;
+}
+
+}  // namespace
+
+int budget_check(const Scene& scene, double budget) {
+  const study::SlideSize size = study::slide_size(scene);
+  const double cell = std::max(scene.grid.cell_size, size.mean_thickness / kCalibrationCells);
+  std::printf("# budget: %.3g s for %s to t = %.4g s, %d OpenMP thread(s) on this machine\n",
+              budget, scene.name.c_str(), scene.time.end, omp_get_max_threads());
+  std::printf("# slide: %.3g m long, %.3g m mean thickness\n", size.length, size.mean_thickness);
+
+  Scene mpm = scene;
+  mpm.method = Method::Mpm;
+  mpm.overrides.clear();
+  apply_overrides(mpm, cell, std::nullopt);
+  Simulation sim(mpm);
+  const Calibration mpm_cal =
+      calibrate(sim, sim.particles().size(), cell, scene.time.end, 2);
+  print_calibration("mpm", "particles", mpm_cal);
+
+  std::optional<Calibration> dam_cal;
+  std::string dam_why;
+  Scene dam = mpm;
+  dam.method = Method::Dam;
+  dam.dam.elements = 0;  // elements = length / cell, so that they scale with h
+  // The depth-averaged model is a flowing layer resisted by the strength
+  // law; it accepts an elastic body but has nothing to model it with.
+  const bool elastic = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                   [](const MaterialSpec& m) { return m.model != MaterialModel::Tresca; });
+  try {
+    if (elastic) throw SceneError("an elastic body does not flow as a depth-averaged layer", 0);
+    DamSolver solver(dam);
+    dam_cal = calibrate(solver, solver.elements(), cell, scene.time.end, 1);
+    print_calibration("dam", "elements", *dam_cal);
+  } catch (const SceneError& e) {
+    dam_why = e.what();
+  } catch (const NumericalFailure& e) {
+    dam_why = std::string("its calibration failed: ") + e.what();
+  }
+
+  const double h_mpm = print_estimate("mpm cpu: ", "particles", mpm_cal, budget);
+  std::string why;
+  if (cuda_devices(why).empty())
+    std::printf("mpm cuda: not available here (%s)\n", why.c_str());
+  else
+    std::printf("mpm cuda: a device is present; this check calibrates the CPU only\n");
+  if (dam_cal)
+    print_estimate("dam cpu: ", "elements", *dam_cal, budget);
+  else
+    std::printf("dam cpu:  cannot run this scene: %s\n", dam_why.c_str());
+
+  const study::MethodChoice choice = study::choose_method(h_mpm, dam_cal.has_value(), size);
+  if (choice.method == Method::Mpm)
+    std::printf("pick: mpm cpu at h = %.3g m: %s\n", h_mpm, choice.reason.c_str());
+  else
+    std::printf("pick: dam cpu at h = %.3g m: %s\n",
+                study::finest_cell_for_budget(dam_cal->model, budget), choice.reason.c_str());
+  return 0;
+}
+
+}  // namespace runout

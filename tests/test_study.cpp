@@ -1,0 +1,284 @@
+// `runout study` and `runout check --budget`: the arithmetic on synthetic
+// data of known answer (interpolation, errors, observed order, Pareto
+// front, the rigid-block reference, the cost model), then the commands end
+// to end on the verification block.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "cli_runner.hpp"
+#include "runout/scene_parser.hpp"
+#include "runout/study.hpp"
+#include "scene_builders.hpp"
+
+using namespace runout;
+using namespace runout::study;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kBlockScene =
+    std::string(RUNOUT_SOURCE_DIR) + "/scenes/verification_sliding_block.toml";
+
+// A history of a toe that runs out as s = t^2 with velocity 2t, its length
+// 10 + t: columns in the engine's order, with others in between.
+std::string synthetic_history() {
+  std::string csv = "time,step,dt,toe,toe_velocity,runout,rear,length,max_thickness\n";
+  for (int k = 0; k <= 10; ++k) {
+    const double t = 0.5 * k;
+    std::ostringstream row;
+    row << t << "," << 10 * k << ",0.05,0," << 2 * t << "," << t * t << ",0," << 10 + t << ",1\n";
+    csv += row.str();
+  }
+  return csv;
+}
+
+}  // namespace
+
+TEST(Study, InterpolatesBetweenRowsAndHoldsOnlyARunAtRest) {
+  const std::vector<double> t{0, 1, 2}, v{0, 10, 30};
+  EXPECT_DOUBLE_EQ(value_at(t, v, 0.25, false), 2.5);
+  EXPECT_DOUBLE_EQ(value_at(t, v, 1.5, false), 20.0);
+  EXPECT_DOUBLE_EQ(value_at(t, v, 2.0, false), 30.0);
+  EXPECT_DOUBLE_EQ(value_at(t, v, -1.0, false), 0.0);
+  EXPECT_TRUE(std::isnan(value_at(t, v, 2.5, false)));  // the run never got there
+  EXPECT_DOUBLE_EQ(value_at(t, v, 2.5, true), 30.0);    // it stopped at rest
+  EXPECT_TRUE(std::isnan(value_at({}, {}, 1.0, true)));
+}
+
+TEST(Study, MetricsOfASyntheticHistory) {
+  const History h = parse_history(synthetic_history(), "synthetic");
+  ASSERT_EQ(h.time.size(), 11u);
+  const Metrics m = run_metrics(h, {1.0, 1.25, 4.0}, false);
+  EXPECT_DOUBLE_EQ(m.runout_at[0], 1.0);
+  // Between rows 1.0 and 1.5 (s = 1, 2.25): linear, not the parabola.
+  EXPECT_DOUBLE_EQ(m.runout_at[1], 1.625);
+  EXPECT_DOUBLE_EQ(m.runout_at[2], 16.0);
+  EXPECT_DOUBLE_EQ(m.runout_end, 25.0);
+  EXPECT_DOUBLE_EQ(m.peak_toe_velocity, 10.0);
+  EXPECT_DOUBLE_EQ(m.final_length, 15.0);
+}
+
+TEST(Study, HistoryErrorsNameTheColumnOrTheLine) {
+  try {
+    parse_history("time,step,toe_velocity,length\n0,0,0,0\n", "h.csv");
+    FAIL() << "no runout column";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("h.csv: no column 'runout'"), std::string::npos);
+  }
+  try {
+    parse_history("time,step,toe_velocity,runout,length\n0,0,0,0,0\n1,2,x,4,5\n", "h.csv");
+    FAIL() << "a bad number";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("h.csv:3: 'x'"), std::string::npos);
+  }
+}
+
+TEST(Study, RelativeErrorsAgainstAReference) {
+  EXPECT_DOUBLE_EQ(relative_error(9.0, 10.0), 0.1);
+  EXPECT_DOUBLE_EQ(relative_error(11.0, -10.0), 2.1);
+  EXPECT_TRUE(std::isnan(relative_error(1.0, 0.0)));
+  EXPECT_TRUE(std::isnan(relative_error(NAN, 1.0)));
+  Metrics run{{2.0}, 9.0, 3.0, 12.0}, ref{{4.0}, 10.0, 2.0, 12.0};
+  const std::vector<double> e = metric_errors(run, ref);
+  ASSERT_EQ(e.size(), 4u);
+  EXPECT_DOUBLE_EQ(e[0], 0.5);
+  EXPECT_DOUBLE_EQ(e[1], 0.1);
+  EXPECT_DOUBLE_EQ(e[2], 0.5);
+  EXPECT_DOUBLE_EQ(e[3], 0.0);
+}
+
+TEST(Study, ObservedOrderOfAKnownPowerLaw) {
+  const std::vector<double> h{0.8, 0.4, 0.2, 0.1};
+  for (double p : {1.0, 1.7, 2.0}) {
+    std::vector<double> e;
+    for (double x : h) e.push_back(0.3 * std::pow(x, p));
+    EXPECT_NEAR(observed_order(h, e), p, 1e-12);
+  }
+  // A zero error (the reference itself) and a NaN take no part.
+  EXPECT_NEAR(observed_order({0.8, 0.4, 0.2, 0.1}, {0.64, 0.16, NAN, 0.0}), 2.0, 1e-12);
+  EXPECT_TRUE(std::isnan(observed_order({0.4}, {0.1})));
+  EXPECT_TRUE(std::isnan(observed_order({0.4, 0.4}, {0.1, 0.2})));
+}
+
+TEST(Study, ParetoFrontOfAKnownSet) {
+  //                              0    1    2    3    4    5    6
+  const std::vector<double> cost{1.0, 2.0, 3.0, 4.0, 2.5, 5.0, NAN};
+  const std::vector<double> err{0.5, 0.6, 0.2, 0.2, 0.3, 0.05, 0.0};
+  // 1 is beaten by 0, 3 by 2 (same error, dearer), 6 has no cost.
+  EXPECT_EQ(pareto_front(cost, err), (std::vector<int>{0, 4, 2, 5}));
+  EXPECT_TRUE(pareto_front({}, {}).empty());
+}
+
+TEST(Study, RigidBlockAccelerationForEachInterface) {
+  const double g = 9.81, theta = 10.0 * M_PI / 180.0, rho = 600.0, H = 2.0;
+  Scene s = fixtures::block_scene({2, 0}, {12, H}, {0, 0}, {60, 6}, 0.25, 2, rho, 2e6, 0.3);
+  s.gravity.vector = {g * std::sin(theta), -g * std::cos(theta)};
+  s.base.kind = BaseKind::Planar;
+  s.base.interface = InterfaceKind::Frictional;
+  s.base.shear_strength = 1000.0;
+  RigidBlock b = rigid_block(s);
+  EXPECT_NEAR(b.acceleration, g * std::sin(theta) - 1000.0 / (rho * H), 1e-12);
+  EXPECT_DOUBLE_EQ(b.length, 10.0);
+  const Metrics m = rigid_block_metrics(b, {2.0, 9.0}, 4.0);
+  EXPECT_NEAR(m.runout_at[0], 0.5 * b.acceleration * 4.0, 1e-12);
+  EXPECT_TRUE(std::isnan(m.runout_at[1]));  // after the end of the run
+  EXPECT_NEAR(m.runout_end, 0.5 * b.acceleration * 16.0, 1e-12);
+  EXPECT_NEAR(m.peak_toe_velocity, 4.0 * b.acceleration, 1e-12);
+
+  s.base.interface = InterfaceKind::Coulomb;
+  s.base.friction = 0.1;
+  EXPECT_NEAR(rigid_block(s).acceleration, g * (std::sin(theta) - 0.1 * std::cos(theta)), 1e-12);
+  s.base.friction = 0.5;  // above tan(10 deg): held
+  EXPECT_EQ(rigid_block(s).acceleration, 0.0);
+  s.base.interface = InterfaceKind::NoSlip;
+  EXPECT_EQ(rigid_block(s).acceleration, 0.0);
+  s.base.kind = BaseKind::None;
+  EXPECT_THROW(rigid_block(s), SceneError);
+}
+
+TEST(Study, CostModelScalesWithTheCellPowerOfItsDimensionPlusOne) {
+  const CostModel mpm{0.5, 10.0, 2}, dam{0.5, 10.0, 1};
+  // Half the cell: 4x the particles and 2x the steps (MPM); 2x and 2x (DAM).
+  EXPECT_NEAR(estimated_seconds(mpm, 0.25), 80.0, 1e-12);
+  EXPECT_NEAR(estimated_seconds(dam, 0.25), 40.0, 1e-12);
+  EXPECT_NEAR(finest_cell_for_budget(mpm, 80.0), 0.25, 1e-12);
+  EXPECT_NEAR(finest_cell_for_budget(dam, 40.0), 0.25, 1e-12);
+  EXPECT_NEAR(estimated_seconds(mpm, finest_cell_for_budget(mpm, 37.0)), 37.0, 1e-9);
+}
+
+TEST(Study, SlideSizeOfTheCaseTrapezoid) {
+  const Scene s = load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/case3_block_sliding.toml");
+  const SlideSize z = slide_size(s);
+  EXPECT_NEAR(z.length, 48.66, 1e-9);
+  EXPECT_NEAR(z.mean_thickness, 200.0 / 48.66, 0.01);  // SCENES.md: area about 200 m2
+}
+
+TEST(Study, MethodChoiceFollowsTheResolutionOfTheThickness) {
+  const SlideSize long_thin{120.0, 4.0}, short_thick{10.0, 4.0};
+  EXPECT_EQ(choose_method(0.2, true, long_thin).method, Method::Mpm);   // 20 cells
+  EXPECT_EQ(choose_method(1.0, true, long_thin).method, Method::Dam);   // 4 cells
+  EXPECT_EQ(choose_method(1.0, false, long_thin).method, Method::Mpm);  // DAM cannot run it
+  const MethodChoice c = choose_method(1.0, true, short_thick);
+  EXPECT_EQ(c.method, Method::Mpm);
+  EXPECT_NE(c.reason.find("under-resolved"), std::string::npos);
+}
+
+// ---- the commands ----
+
+namespace {
+
+using Table = std::vector<std::map<std::string, std::string>>;
+
+// study.csv as rows of column name -> text (the study quotes no cell here).
+Table read_csv(const fs::path& path, std::vector<std::string>& header) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::stringstream hs(line);
+  for (std::string c; std::getline(hs, c, ',');) header.push_back(c);
+  Table rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k) row[header[k]] = cells[k];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(StudyCommand, MatrixRowsSkipsAndErrorsAgainstTheRigidBlock) {
+  using cli_runner::run_cli;
+  const fs::path out = fs::temp_directory_path() / "runout_test_study";
+  fs::remove_all(out);
+  const cli_runner::Result r =
+      run_cli("study " + kBlockScene + " --cells 1,0.5 --ppc 1 --method mpm,dam --backend cpu,cuda"
+              " --end 1.5 --times 1 --reference analytic-block --jobs 2 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::vector<std::string> header;
+  const Table rows = read_csv(out / "study.csv", header);
+  for (const char* c : {"method", "backend", "shape", "cell", "ppc", "particles", "steps", "wall_s",
+                        "particle_steps_per_s", "peak_memory_mib", "runout_t1", "runout_end",
+                        "peak_toe_velocity", "final_length", "err_runout_t1", "err_runout_end",
+                        "err_peak_toe_velocity", "err_final_length", "reference"})
+    EXPECT_NE(std::find(header.begin(), header.end(), c), header.end()) << c;
+  // 2 cells x (mpm cpu, mpm cuda, dam cpu, dam cuda): the DAM takes no shape
+  // or ppc, and runs on the CPU only.
+  ASSERT_EQ(rows.size(), 8u);
+  int ran = 0;
+  for (const auto& row : rows) {
+    const bool cuda = row.at("backend") == "cuda";
+    if (cuda && row.at("method") == "dam") {
+      EXPECT_EQ(row.at("status"), "skipped");
+      EXPECT_NE(row.at("note").find("CPU only"), std::string::npos);
+      continue;
+    }
+    if (cuda && row.at("status") == "skipped") {  // a build or machine without CUDA
+      EXPECT_NE(row.at("note").find("no CUDA device"), std::string::npos);
+      continue;
+    }
+    ++ran;
+    EXPECT_EQ(row.at("status"), "ok") << row.at("id") << ": " << row.at("note");
+    EXPECT_EQ(row.at("reference"), "analytic-block");
+    const double mem = std::stod(row.at("peak_memory_mib"));
+    EXPECT_TRUE(std::isfinite(mem) && mem > 0.0) << row.at("id");
+    EXPECT_GT(std::stol(row.at("steps")), 0);
+    EXPECT_EQ(std::stod(row.at("end_time")), 1.5);
+    // The study's arithmetic on the CSV itself: err = |s - s_exact| / s_exact
+    // with s_exact = a t^2 / 2 at t = 1.5 s.
+    const double a = 9.81 * std::sin(10.0 * M_PI / 180.0) - 1000.0 / (600.0 * 2.0);
+    const double exact = 0.5 * a * 1.5 * 1.5;
+    EXPECT_NEAR(std::stod(row.at("err_runout_end")),
+                std::abs(std::stod(row.at("runout_end")) - exact) / exact, 1e-5);
+    if (row.at("method") == "mpm") {
+      EXPECT_EQ(row.at("shape"), "gimp");
+      EXPECT_EQ(row.at("ppc"), "1");
+    } else {
+      EXPECT_EQ(row.at("shape"), "");
+      EXPECT_EQ(row.at("ppc"), "");
+    }
+  }
+  EXPECT_GE(ran, 4);  // mpm and dam on the CPU at both cells
+  EXPECT_TRUE(fs::exists(out / "runs" / "mpm_cpu_gimp_h0.5_ppc1" / "history.csv"));
+}
+
+TEST(StudyCommand, FinestRunIsTheReferenceAndTheDomainLengthIsAColumn) {
+  using cli_runner::run_cli;
+  const fs::path out = fs::temp_directory_path() / "runout_test_study_finest";
+  fs::remove_all(out);
+  const cli_runner::Result r = run_cli("study " + kBlockScene +
+                                       " --cells 1,0.5 --ppc 1 --end 1 --domain-x-max 30,60 --out " +
+                                       out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::vector<std::string> header;
+  const Table rows = read_csv(out / "study.csv", header);
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& row : rows) {
+    const std::string x = row.at("domain_x_max");
+    EXPECT_TRUE(x == "30" || x == "60") << x;
+    EXPECT_EQ(row.at("reference"), "mpm_cpu_gimp_h0.5_ppc1_x" + x);
+    if (row.at("cell") == "0.5") {
+      EXPECT_EQ(std::stod(row.at("err_runout_end")), 0.0);
+    }
+  }
+}
+
+TEST(StudyCommand, BudgetCheckEstimatesEachMethodAndPicksOne) {
+  const cli_runner::Result r =
+      cli_runner::run_cli("check " + kBlockScene + " --budget 5");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* line : {"# calibration: mpm at h = ",
+                           "mpm cpu:  finest cell ", "mpm cuda: ", "dam cpu:  cannot run this scene: an elastic body",
+                           "pick: "})
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+}
