@@ -5,7 +5,13 @@
 //   of rho g H);
 // - a time step far above the CFL limit blows up, and the step that does
 //   so is caught and reported within a few steps (measured: 2 at 20 x the
-//   limit), before any state with a non-finite value can be written.
+//   limit), before any state with a non-finite value can be written;
+// - near-incompressible elasticity (nu = 0.49) locks: on a free-standing
+//   column the particles' mean stress alternates from particle row to
+//   particle row by about +-7 % of rho g H around the exact profile; the
+//   cell-averaged volumetric strain rate and mean stress (solver
+//   volumetric_smoothing) remove it (measured RMS error / (rho g H): 0.063
+//   without, 0.0033 with; 0.0035 without at nu = 0.3).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -41,7 +47,53 @@ double soft_column_stress_error(ShapeKind shape) {
   return worst;
 }
 
+// A free-standing column (the column scene without its side walls), 1 m
+// wide, 4 cells across, settled under its own weight. Away from the base
+// (Saint-Venant) it is in uniaxial plane-strain stress: sigma_xx = 0,
+// sigma_yy = -rho g (H - Y) (the weight above; Y the initial height),
+// sigma_zz = nu sigma_yy (eps_zz = 0), so the mean stress is
+// p = (1 + nu) sigma_yy / 3. Returns the RMS of the particles' error in p
+// over 0.3 H <= Y <= 0.9 H, over rho g H.
+double free_column_pressure_error(double poisson, bool smoothing) {
+  const double height = 10.0;
+  Scene s = fixtures::column_scene(height, 0.25, kRho, 1e7, kG);
+  s.materials[0].poisson_ratio = poisson;
+  s.grid.min.x() = -1.0;
+  s.grid.max.x() = 2.0;
+  s.boundary.left = s.boundary.right = BoundaryKind::Free;
+  s.solver.volumetric_smoothing = smoothing;
+  Simulation sim(s);
+  sim.advance_to(2.0);  // about 30 periods of its first mode: settled with the damping
+  const Particles& P = sim.particles();
+  double sum = 0;
+  int n = 0;
+  for (int p = 0; p < P.size(); ++p) {
+    if (P.y0[p] < 0.3 * height || P.y0[p] > 0.9 * height) continue;
+    const double exact = -(1.0 + poisson) / 3.0 * kRho * kG * (height - P.y0[p]);
+    const double e = ((P.sxx[p] + P.syy[p] + P.szz[p]) / 3.0 - exact) / (kRho * kG * height);
+    sum += e * e;
+    ++n;
+  }
+  return std::sqrt(sum / n);
+}
+
 }  // namespace
+
+// The smoothed pressure is constant in a cell, so it is off the linear
+// profile by (h / 4) dp/dy at particles h / 4 from the cell's centre:
+// (1 + nu) / 3 * h / (4 H) = 0.0031 of rho g H here; 0.01 allows three
+// times that. Without smoothing the error is the locking's oscillation,
+// which nu = 0.3 does not have.
+TEST(Stability, VolumetricSmoothingRemovesTheLockingPressureOscillation) {
+  const double locked = free_column_pressure_error(0.49, false);
+  const double smoothed = free_column_pressure_error(0.49, true);
+  const double compressible = free_column_pressure_error(0.3, false);
+  std::printf("free column, RMS mean-stress error / (rho g H): nu 0.49 %.3g without smoothing, "
+              "%.3g with; nu 0.3 without %.3g\n", locked, smoothed, compressible);
+  EXPECT_LT(smoothed, 0.01);
+  EXPECT_GT(locked, 5.0 * smoothed);
+  EXPECT_LT(compressible, 0.01);
+}
 
 TEST(Stability, LinearMpmCellCrossingNoiseIsSeveralTimesGimps) {
   const double gimp = soft_column_stress_error(ShapeKind::Gimp);
