@@ -13,6 +13,7 @@
 #include "progress.hpp"
 #include "study_command.hpp"
 #include "runout/device_info.hpp"
+#include "runout/memory_estimate.hpp"
 #include "runout/run.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
@@ -72,15 +73,17 @@ int check(const Scene& s) {
   const double h = s.grid.cell_size;
   const long cells = std::lround((s.grid.max.x() - s.grid.min.x()) / h) *
                      std::lround((s.grid.max.y() - s.grid.min.y()) / h);
-  // Per particle: 16 doubles, 2 ints and an id of state, 2 doubles and 3
-  // ints of scratch; per box node: 11 doubles.
-  const double bytes = n * (16 * 8 + 2 * 4 + 8 + 2 * 8 + 3 * 4.0);
+  const MemoryEstimate memory = estimate_memory(s, s.method);
+  const std::optional<double> available = available_memory();
   std::cout << to_toml(s) << "\n# particles:        " << n << "\n# domain cells:     " << cells
             << "\n# initial dt:       " << dt << " s (Courant " << s.time.courant << ")"
             << "\n# steps (about):    " << std::lround(s.time.end / dt)
             << " (dt falls as the slide speeds up)"
-            << "\n# memory (about):   " << bytes / 1048576.0
-            << " MiB of particles, plus a grid box of 88 bytes per node\n";
+            << "\n# memory (about):   " << byte_text(memory.bytes()) << " ("
+            << byte_text(memory.item_bytes) << " per "
+            << (s.method == Method::Dam ? "element" : "particle") << ", "
+            << byte_text(memory.node_bytes) << " per grid node), "
+            << (available ? byte_text(*available) : std::string("unknown")) << " available\n";
   return kOk;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "runout/materials.hpp"
+#include "runout/memory_estimate.hpp"
 #include "runout/morphology.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
@@ -92,6 +93,7 @@ DamSolver::DamSolver(const Scene& scene)
       courant_(scene.time.courant) {
   if (scene.base.kind == BaseKind::None)
     throw SceneError("the depth-averaged method runs along a [base]; the scene has none", 0);
+  require_memory(scene, Method::Dam);
   const BodySpec& body = scene.bodies.front();
   const MaterialSpec& material = scene.materials[body.material];
   density_ = material.density;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <string>
 
 namespace runout {
 namespace {
@@ -56,23 +57,41 @@ double signed_area(const Polygon& polygon) {
   return 0.5 * twice;
 }
 
-bool is_simple(const Polygon& polygon) {
+std::string outline_defect(const Polygon& polygon) {
   const std::size_t n = polygon.size();
-  if (n < 3) return false;
+  if (n < 3) return "fewer than 3 vertices";
   auto vertex = [&](std::size_t i) -> const Eigen::Vector2d& {
     return polygon[i % n];
   };
+  // Checked first: a collinear outline also folds back, and "zero area"
+  // says better what is wrong with it.
+  std::size_t other = 1;  // a vertex apart from vertex 0, for the line through both
+  while (other < n && vertex(other) == vertex(0)) ++other;
+  bool collinear = true;
+  for (std::size_t i = 1; i < n && other < n && collinear; ++i)
+    collinear = turn(vertex(0), vertex(other), vertex(i)) == 0.0;
+  if (collinear) return "zero area: every vertex lies on one line";
+  for (std::size_t i = 0; i < n; ++i)
+    if (vertex(i + 1) == vertex(i))
+      return "vertices " + std::to_string(i) + " and " + std::to_string((i + 1) % n) +
+             " coincide (a zero-length edge)";
   for (std::size_t i = 0; i < n; ++i) {
-    if (folds_back(vertex(i), vertex(i + 1), vertex(i + 2))) return false;
+    if (folds_back(vertex(i), vertex(i + 1), vertex(i + 2)))
+      return "the outline folds back on itself at vertex " + std::to_string((i + 1) % n);
     // Edge i against every later edge that shares no vertex with it.
     for (std::size_t j = i + 2; j < n; ++j) {
       if (i == 0 && j == n - 1) continue;
       if (segments_meet(vertex(i), vertex(i + 1), vertex(j), vertex(j + 1)))
-        return false;
+        return "self-intersecting polygon: edge " + std::to_string(i) + " (vertices " +
+               std::to_string(i) + ", " + std::to_string((i + 1) % n) + ") meets edge " +
+               std::to_string(j) + " (vertices " + std::to_string(j) + ", " +
+               std::to_string((j + 1) % n) + ")";
     }
   }
-  return true;
+  return "";
 }
+
+bool is_simple(const Polygon& polygon) { return outline_defect(polygon).empty(); }
 
 bool contains(const Polygon& polygon, const Eigen::Vector2d& point) {
   bool inside = false;

@@ -47,6 +47,18 @@ Range between(double lo, double hi, const char* brackets) {
 
 const Range kPpcRange = between(1, 16, "[]");
 
+// Frames a run may write (time.end / time.output_interval): far beyond any
+// useful series, and well short of a file count that fills a disk.
+constexpr double kMaxFrames = 1e6;
+
+// Why end / interval gives too many frames, or "".
+std::string too_many_frames(double end, double interval) {
+  const double frames = end / interval;
+  if (frames <= kMaxFrames) return "";
+  return "time.end / time.output_interval gives " + format_number(frames) +
+         " frames, more than the " + format_number(kMaxFrames) + " a run may write";
+}
+
 // line 0 means "no line": command-line values, missing files.
 [[noreturn]] void throw_error(const std::string& source, int line,
                               const std::string& key, const std::string& what) {
@@ -119,6 +131,8 @@ class Value {
     const auto* i = node_->as_integer();
     if (!i) fail_type("an integer");
     check(static_cast<double>(i->get()), range);
+    if (i->get() < std::numeric_limits<int>::min() || i->get() > std::numeric_limits<int>::max())
+      fail("must fit a 32-bit int (got " + std::to_string(i->get()) + ")");
     return static_cast<int>(i->get());
   }
 
@@ -284,9 +298,21 @@ void snap_max_to_node(GridSpec& grid) {
   }
 }
 
+// The name becomes file names (<name>.pvd, the default folder out/<name>),
+// so it must be one: a path separator would write outside the folder.
+void check_scene_name(const Value& value, const std::string& name) {
+  if (name.empty() || name == "." || name == "..")
+    value.fail("must be a file name (got " + in_quotes(name) + ")");
+  for (const char c : name)
+    if (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20)
+      value.fail("must be a file name, without '/', '\\' or control characters");
+}
+
 void read_scene_info(TableReader r, Scene& scene) {
   r.check_keys({"name", "description", "method"});
-  scene.name = r.need("name").string();
+  const Value name = r.need("name");
+  scene.name = name.string();
+  check_scene_name(name, scene.name);
   if (auto v = r.find("description")) scene.description = v->string();
   if (auto v = r.find("method")) scene.method = v->choice(scene_text::kMethodNames).value;
 }
@@ -332,6 +358,8 @@ TimeSpec read_time(TableReader r) {
   if (time.output_interval > time.end)
     interval.fail("must be <= time.end (got " + format_number(time.output_interval) +
                   " > " + format_number(time.end) + ")");
+  const std::string frames = too_many_frames(time.end, time.output_interval);
+  if (!frames.empty()) interval.fail(frames);
   return time;
 }
 
@@ -470,9 +498,10 @@ std::string point_text(const Eigen::Vector2d& v) {
 // The solver wants a counter-clockwise simple outline inside the grid.
 Polygon checked_outline(Polygon outline, const GridSpec& grid,
                         const TableReader& r, int line) {
-  if (!is_simple(outline)) r.fail("polygon", line, "self-intersecting polygon");
-  const double area = signed_area(outline);
-  if (area == 0.0) r.fail("polygon", line, "polygon has zero area");
+  const std::string defect = outline_defect(outline);
+  if (!defect.empty()) r.fail("polygon", line, defect);
+  const double area = signed_area(outline);  // 0 still possible by rounding
+  if (area == 0.0) r.fail("polygon", line, "zero area");
   if (area < 0.0) std::reverse(outline.begin(), outline.end());
   for (const Eigen::Vector2d& v : outline) {
     if ((v.array() >= grid.min.array()).all() && (v.array() <= grid.max.array()).all())
@@ -665,6 +694,8 @@ void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optiona
   }
   if (end_time) {
     check_override("--end", *end_time, at_least(scene.time.output_interval));
+    const std::string frames = too_many_frames(*end_time, scene.time.output_interval);
+    if (!frames.empty()) throw_error("", 0, "--end", frames);
     scene.time.end = *end_time;
     scene.overrides.push_back("time.end = " + format_number(*end_time));
   }

@@ -1,9 +1,13 @@
 #include "runout/seeding.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
+#include "runout/memory_estimate.hpp"
 #include "runout/polygon.hpp"
+#include "runout/scene_parser.hpp"
 
 namespace runout {
 namespace {
@@ -45,12 +49,29 @@ void seed_body(const Scene& scene, int body_index, std::vector<Seed>& seeds) {
   }
 }
 
+std::string spacing_text(double spacing) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", spacing);
+  return buf;
+}
+
 }  // namespace
 
 Particles seed_particles(const Scene& scene) {
+  require_memory(scene, Method::Mpm);
   std::vector<Seed> seeds;
-  for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b)
+  for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
+    const std::size_t before = seeds.size();
     seed_body(scene, b, seeds);
+    // A body thinner than the spacing everywhere would silently vanish.
+    if (seeds.size() == before)
+      throw SceneError("body[" + std::to_string(b) + "] \"" + scene.bodies[b].name +
+                           "\": no particle: the body covers no sub-cell centre of the particle "
+                           "lattice (spacing grid.cell_size / grid.ppc = " +
+                           spacing_text(scene.grid.cell_size / scene.grid.ppc) +
+                           " m); make it thicker or the spacing finer",
+                       0);
+  }
 
   const double spacing = scene.grid.cell_size / scene.grid.ppc;
   const double volume = spacing * spacing;

@@ -9,6 +9,9 @@ namespace runout {
 // holds exactly ppc^2 particles), a sub-cell centre inside the polygon
 // becoming a particle of volume (h/ppc)^2 and mass density * volume.
 // Stress starts at zero; x0/y0 = position; ids run 0..n-1 in body order.
+// Throws SceneError, before allocating, for a scene whose particles would
+// not fit in memory or overflow int (require_memory), and for a body that
+// holds no particle.
 Particles seed_particles(const Scene& scene);
 
 }  // namespace runout

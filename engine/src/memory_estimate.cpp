@@ -1,0 +1,189 @@
+#include "runout/memory_estimate.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "runout/polygon.hpp"
+#include "runout/scene_parser.hpp"
+#include "runout/stages.hpp"
+
+namespace runout {
+namespace {
+
+// A frame is built in one string before it is written (vtu_writer.cpp,
+// dam_output.cpp): base64 makes 4 bytes of 3, and while the string grows
+// its old and new buffers coexist, so up to twice its final size. Counted
+// uncompressed, the worst case of the zlib option.
+constexpr double kFrameBytesPerRawByte = 2.0 * 4.0 / 3.0;
+
+// Per particle (particles.hpp, simulation.hpp, vtu_writer.cpp):
+//   state: 16 doubles, body and material ints, a 64-bit id;
+//   step scratch: dx, dy, the stencil and velocity gradient, and the
+//   order, block, cell and next ints of the block sort;
+//   a frame being written: 28 doubles, 3 int64 (id, connectivity,
+//   offset), 2 int32 and a uint8 cell type.
+constexpr double kParticleState = 16 * sizeof(double) + 2 * sizeof(int) + sizeof(std::int64_t);
+constexpr double kParticleScratch =
+    2 * sizeof(double) + sizeof(Stencil2D) + sizeof(VelocityGradient) + 4 * sizeof(int);
+constexpr double kParticleFrame = 28 * 8 + 3 * 8 + 2 * 4 + 1;
+
+// Per grid node (grid.hpp): 13 nodal doubles, and the cell volume and
+// mean of the volumetric smoothing (one cell per node, near enough).
+constexpr double kNodeBytes = 15 * sizeof(double);
+
+// Per depth-averaged element (dam.hpp, dam_output.cpp): s, v and the
+// lumped mass of its node, volume, xi, gamma_dot, tau, two slope
+// components and the driving force of a step; a frame carries 11 doubles
+// and a 64-bit connectivity entry.
+constexpr double kElementState = 10 * sizeof(double);
+constexpr double kElementFrame = 11 * 8 + 8;
+
+double perimeter(const Polygon& polygon) {
+  double length = 0;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    length += (polygon[(i + 1) % polygon.size()] - polygon[i]).norm();
+  return length;
+}
+
+double span(const GridSpec& grid, int axis) {
+  return std::round((grid.max[axis] - grid.min[axis]) / grid.cell_size) + 1;
+}
+
+// Lattice points of spacing s inside a simple polygon: its area / s^2 on
+// average; at most the area of the polygon grown by the circumradius
+// r = s / sqrt(2) of a lattice cell, A + P r + pi r^2 (Steiner's formula
+// bounds it for any simple polygon), over s^2.
+void count_particles(const Scene& scene, MemoryEstimate& e) {
+  const double s = scene.grid.cell_size / scene.grid.ppc;
+  for (const BodySpec& body : scene.bodies) {
+    const double area = std::abs(signed_area(body.polygon));
+    e.items += area / (s * s);
+    e.items_bound += area / (s * s) + perimeter(body.polygon) / (s * std::sqrt(2.0)) + 2.0;
+  }
+  e.item_bytes = kParticleState + kParticleScratch + kParticleFrame * kFrameBytesPerRawByte;
+  e.grid_nodes = span(scene.grid, 0) * span(scene.grid, 1);
+  e.node_bytes = kNodeBytes;
+}
+
+// dam.elements, or (0) the first body's length along the base over the
+// cell size, here its bounding-box diagonal, which that length cannot
+// exceed on a planar base and hardly on a polyline one.
+void count_elements(const Scene& scene, MemoryEstimate& e) {
+  double elements = scene.dam.elements;
+  if (elements == 0 && !scene.bodies.empty()) {
+    const Polygon& p = scene.bodies.front().polygon;
+    Eigen::Vector2d lo = p.front(), hi = p.front();
+    for (const Eigen::Vector2d& v : p) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+    elements = std::max(2.0, std::ceil((hi - lo).norm() / scene.grid.cell_size));
+  }
+  e.items = e.items_bound = elements;
+  e.item_bytes = kElementState + kElementFrame * kFrameBytesPerRawByte;
+}
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+// What the particle count comes from, for messages: the spacing and the
+// largest body.
+std::string particle_drivers(const Scene& scene) {
+  const double s = scene.grid.cell_size / scene.grid.ppc;
+  std::size_t largest = 0;
+  for (std::size_t b = 1; b < scene.bodies.size(); ++b)
+    if (std::abs(signed_area(scene.bodies[b].polygon)) >
+        std::abs(signed_area(scene.bodies[largest].polygon)))
+      largest = b;
+  std::string text = "particle spacing grid.cell_size / grid.ppc = " + number_text(s) + " m";
+  if (!scene.bodies.empty())
+    text += ", largest body body[" + std::to_string(largest) + "] \"" + scene.bodies[largest].name +
+            "\" of " + number_text(std::abs(signed_area(scene.bodies[largest].polygon))) + " m2";
+  return text;
+}
+
+[[noreturn]] void refuse(const std::string& what) { throw SceneError(what, 0); }
+
+void require_int_counts(const Scene& scene, Method method, const MemoryEstimate& e) {
+  if (method == Method::Dam) {
+    if (e.items_bound > INT_MAX)
+      refuse("dam.elements: about " + number_text(e.items_bound) +
+             " elements (the body's length / grid.cell_size when dam.elements is 0), more than "
+             "the " + std::to_string(INT_MAX) + " a run can index: raise grid.cell_size or set "
+             "dam.elements");
+    return;
+  }
+  if (e.items_bound > INT_MAX)
+    refuse("grid.cell_size: up to " + number_text(e.items_bound) + " particles (" +
+           particle_drivers(scene) + "), more than the " + std::to_string(INT_MAX) +
+           " a run can index: raise grid.cell_size, lower grid.ppc or make the bodies smaller");
+  if (e.grid_nodes > INT_MAX)
+    refuse("grid.cell_size: " + number_text(e.grid_nodes) +
+           " grid nodes over the domain grid.min to grid.max, more than the " +
+           std::to_string(INT_MAX) + " a run can index: raise grid.cell_size or shrink the domain");
+}
+
+}  // namespace
+
+MemoryEstimate estimate_memory(const Scene& scene, Method method) {
+  MemoryEstimate e;
+  if (method == Method::Dam)
+    count_elements(scene, e);
+  else
+    count_particles(scene, e);
+  return e;
+}
+
+std::optional<double> available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string line;
+  while (std::getline(meminfo, line)) {
+    std::istringstream fields(line);
+    std::string key, unit;
+    double kib = 0;
+    if (fields >> key >> kib >> unit && key == "MemAvailable:" && unit == "kB") return kib * 1024;
+  }
+  return std::nullopt;
+}
+
+void require_memory(const Scene& scene, Method method, std::optional<double> available_bytes) {
+  const MemoryEstimate e = estimate_memory(scene, method);
+  require_int_counts(scene, method, e);
+  if (!available_bytes || e.bytes() <= *available_bytes) return;
+  const std::string need = "the run needs about " + byte_text(e.bytes()) +
+                           " of memory, more than the " + byte_text(*available_bytes) +
+                           " available (MemAvailable in /proc/meminfo): ";
+  if (method == Method::Dam)
+    refuse("dam.elements: " + need + number_text(e.items) + " elements of " +
+           byte_text(e.item_bytes) + " (dam.elements, or the body's length / grid.cell_size); "
+           "raise grid.cell_size or lower dam.elements");
+  refuse("grid.cell_size: " + need + number_text(e.items) + " particles of " +
+         byte_text(e.item_bytes) + " (" + particle_drivers(scene) + ") and " +
+         number_text(e.grid_nodes) + " grid nodes of " + byte_text(e.node_bytes) +
+         " (the domain grid.min to grid.max); raise grid.cell_size, lower grid.ppc or make the "
+         "bodies smaller");
+}
+
+void require_memory(const Scene& scene, Method method) {
+  require_memory(scene, method, available_memory());
+}
+
+std::string byte_text(double bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  int u = 0;
+  while (bytes >= 1024 && u < 6) {
+    bytes /= 1024;
+    ++u;
+  }
+  return number_text(bytes) + " " + units[u];
+}
+
+}  // namespace runout
