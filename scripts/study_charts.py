@@ -64,6 +64,22 @@ def usable(row, metric=ERROR):
     return row["status"] == "ok" and row[metric] > 0 and math.isfinite(row[metric])
 
 
+def save(fig, ax, path, xlabel, ylabel, title):
+    """Labels, grid and legend of a chart, written to path."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def error_label(metric):
+    return "relative error of %s" % metric.replace("err_", "")
+
+
 def chart_error_vs_wall(rows, path, title="", metric=ERROR):
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for label, runs in group(rows).items():
@@ -79,14 +95,7 @@ def chart_error_vs_wall(rows, path, title="", metric=ERROR):
                 label="Pareto front")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall time per run [s]")
-    ax.set_ylabel("relative error of %s" % metric.replace("err_", ""))
-    ax.set_title(title or "Error against cost")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, ax, path, "wall time per run [s]", error_label(metric), title or "Error against cost")
 
 
 def chart_convergence(rows, path, title="", metric=ERROR):
@@ -103,14 +112,7 @@ def chart_convergence(rows, path, title="", metric=ERROR):
             # The fitted e = C h^p through the points' geometric mean.
             log_c = sum(math.log(ei) - p * math.log(hi) for hi, ei in zip(h, e)) / len(h)
             ax.loglog(h, [math.exp(log_c) * hi ** p for hi in h], ":", color=line[0].get_color())
-    ax.set_xlabel("cell size h [m]")
-    ax.set_ylabel("relative error of %s" % metric.replace("err_", ""))
-    ax.set_title(title or "Convergence")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, ax, path, "cell size h [m]", error_label(metric), title or "Convergence")
 
 
 def read_history(path):
@@ -131,14 +133,7 @@ def chart_runout_history(study_dir, rows, path, title="", analytic=None):
                 ax.plot(t, s, lw=1.2, label="%s, h = %g" % (label, r["cell"]))
     if analytic:
         ax.plot(analytic[0], analytic[1], "k--", lw=1, label="rigid block (exact)")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("toe runout [m]")
-    ax.set_title(title or "Runout history")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, ax, path, "time [s]", "toe runout [m]", title or "Runout history")
 
 
 def main():
