@@ -19,33 +19,15 @@
 #include "runout/atomic_file.hpp"
 #include "runout/base64.hpp"
 #include "runout/vtu_writer.hpp"
+#include "vtu_text.hpp"
 
 namespace fs = std::filesystem;
 using namespace runout;
+using namespace runout::vtu_text;
 
 namespace {
 
 std::string encode(const std::string& s) { return base64_encode(s.data(), s.size()); }
-
-std::string decode_base64(const std::string& text) {
-  static const std::string alphabet =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  unsigned bits = 0;
-  int count = 0;
-  for (const char c : text) {
-    if (c == '=') break;
-    const auto v = alphabet.find(c);
-    if (v == std::string::npos) throw std::runtime_error("not base64");
-    bits = bits << 6 | static_cast<unsigned>(v);
-    count += 6;
-    if (count >= 8) {
-      count -= 8;
-      out += static_cast<char>(bits >> count & 0xff);
-    }
-  }
-  return out;
-}
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -59,32 +41,6 @@ std::vector<std::string> folder_names(const fs::path& dir) {
   for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
   std::sort(names.begin(), names.end());
   return names;
-}
-
-// The base64 text inside <DataArray ... Name="name" ...>.
-std::string array_text(const std::string& xml, const std::string& name) {
-  const auto at = xml.find("Name=\"" + name + "\"");
-  if (at == std::string::npos) throw std::runtime_error("no array " + name);
-  const auto begin = xml.find('>', at) + 1;
-  const auto end = xml.find("</DataArray>", begin);
-  std::string text = xml.substr(begin, end - begin);
-  text.erase(std::remove_if(text.begin(), text.end(), ::isspace), text.end());
-  return text;
-}
-
-template <class T>
-std::vector<T> as_values(const std::string& bytes) {
-  std::vector<T> values(bytes.size() / sizeof(T));
-  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
-  return values;
-}
-
-// Uncompressed: base64(UInt64 byte count, bytes).
-std::string decode_raw(const std::string& text) {
-  const std::string all = decode_base64(text);
-  const auto size = as_values<std::uint64_t>(all.substr(0, 8)).at(0);
-  EXPECT_EQ(size, all.size() - 8);
-  return all.substr(8);
 }
 
 // zlib: base64(UInt64 [blocks, block size, last size, compressed sizes...])

@@ -1,17 +1,21 @@
 // runout: the command line. Exit codes follow sysexits(3): 64 usage, 65 the
 // scene is invalid, 66 the scene file cannot be read, 70 the run blew up
 // (frames before it are kept), 69 the backend asked for cannot run here, 73
-// the output cannot be written.
+// the output cannot be written. `resume`: 66 no checkpoint in the folder, 65
+// one that is corrupt or of another version.
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <iostream>
 #include <optional>
 
 #include "budget_check.hpp"
 #include "progress.hpp"
 #include "study_command.hpp"
+#include "runout/checkpoint.hpp"
 #include "runout/device_info.hpp"
 #include "runout/memory_estimate.hpp"
 #include "runout/run.hpp"
@@ -87,24 +91,93 @@ int check(const Scene& s) {
   return kOk;
 }
 
-// The run of the scene's method on the chosen backend, or null with the
-// reason when that backend cannot run here.
 using Runner = RunSummary (*)(const Scene&, const RunOptions&);
-Runner runner_for(const Scene& s, const std::string& backend, std::string& why_not) {
-  if (backend == "cpu") return s.method == Method::Dam ? run_dam : run_scene;
-  if (s.method == Method::Dam) {
-    why_not = "the depth-averaged model runs on the CPU only";
-    return nullptr;
-  }
+using Resumer = RunSummary (*)(const RunOptions&);
+
+// The MPM run and resume on the chosen backend, or nulls with the reason
+// when that backend cannot run here.
+struct MpmBackend {
+  Runner run = nullptr;
+  Resumer resume = nullptr;
+};
+MpmBackend mpm_backend(const std::string& backend, std::string& why_not) {
+  if (backend == "cpu") return {run_scene, resume_scene};
 #ifdef RUNOUT_HAVE_CUDA
-  if (cuda_device_available(why_not)) return run_scene_cuda;
+  if (cuda_device_available(why_not)) return {run_scene_cuda, resume_scene_cuda};
 #else
   why_not = "this build has no CUDA";
 #endif
+  return {};
+}
+
+// The run of the scene's method on the chosen backend, or null with the
+// reason when that backend cannot run here.
+Runner runner_for(const Scene& s, const std::string& backend, std::string& why_not) {
+  if (s.method != Method::Dam) return mpm_backend(backend, why_not).run;
+  if (backend == "cpu") return run_dam;
+  why_not = "the depth-averaged model runs on the CPU only";
   return nullptr;
 }
 
-int run(const Scene& s, const std::string& out, const std::string& backend, bool quiet) {
+// Runs go (a run or a resume) with progress and prints its summary; the
+// exit code.
+int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOptions& opt,
+            bool quiet, bool depth_averaged) {
+  ProgressReporter progress;
+  RunOptions with_progress = opt;
+  if (!quiet) with_progress.on_progress = [&](const RunProgress& p) { progress.update(p); };
+  RunSummary r;
+  try {
+    r = go(with_progress);
+  } catch (const SceneError&) {
+    progress.finish();
+    throw;  // a scene the method cannot run: main's exit code for it
+  } catch (const CheckpointMissing& e) {
+    progress.finish();
+    std::cerr << "runout: cannot resume: " << e.what() << "\n";
+    return kNoScene;
+  } catch (const CheckpointError& e) {
+    progress.finish();
+    std::cerr << "runout: cannot resume: " << e.what() << "\n";
+    return kSceneInvalid;
+  } catch (const std::exception& e) {
+    progress.finish();
+    std::cerr << "runout: cannot write the output: " << e.what() << "\n";
+    return kCantCreate;
+  }
+  progress.finish();
+  const std::string name = std::filesystem::path(r.pvd_path).stem().string();
+  const double rate = r.wall_seconds > 0 ? r.particles * double(r.steps_run) / r.wall_seconds : 0;
+  if (r.resumed_from >= 0)
+    std::printf("resumed from the checkpoint at t = %.6g s (step %ld)\n", r.resumed_from,
+                r.steps - r.steps_run);
+  if (depth_averaged)
+    std::printf("%s (depth-averaged): %d elements, %ld steps to t = %.4g s in %.3f s\n",
+                name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds);
+  else
+    std::printf("%s: %d particles, %ld steps to t = %.4g s in %.2f s (%.3g particle-steps/s, %d threads)\n",
+                name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds, rate,
+                omp_get_max_threads());
+  if (r.at_rest) std::printf("the slide came to rest at t = %.4g s\n", r.end_time);
+  std::printf("output: %s (%d frames)\n", r.pvd_path.c_str(), r.frames);
+  if (r.failed) {
+    std::cerr << "runout: run stopped: " << r.failure << "\nrunout: the " << r.frames
+              << " frames written before it are kept in " << opt.out_dir << "\n";
+    if (!r.checkpoint_path.empty())
+      std::cerr << "runout: the last checkpoint, at t = " << r.checkpoint_time << " s, is kept: "
+                << r.checkpoint_path << "\n";
+    return kBlowUp;
+  }
+  return kOk;
+}
+
+int run(const Scene& s, const std::string& out, const std::string& backend, bool quiet,
+        double checkpoint_every) {
+  if (checkpoint_every > 0 && s.method == Method::Dam) {
+    std::cerr << "runout: --checkpoint-every: the depth-averaged model (method = dam) writes "
+                 "no checkpoints\n";
+    return kUsage;
+  }
   std::string why_not;
   const Runner runner = runner_for(s, backend, why_not);
   if (!runner) {
@@ -113,36 +186,21 @@ int run(const Scene& s, const std::string& out, const std::string& backend, bool
   }
   RunOptions opt;
   opt.out_dir = out.empty() ? "out/" + s.name : out;
-  ProgressReporter progress;
-  if (!quiet) opt.on_progress = [&](const RunProgress& p) { progress.update(p); };
-  RunSummary r;
-  try {
-    r = runner(s, opt);
-  } catch (const SceneError&) {
-    progress.finish();
-    throw;  // a scene the method cannot run: main's exit code for it
-  } catch (const std::exception& e) {
-    progress.finish();
-    std::cerr << "runout: cannot write the output: " << e.what() << "\n";
-    return kCantCreate;
+  opt.checkpoint_every = checkpoint_every;
+  return execute([&](const RunOptions& o) { return runner(s, o); }, opt, quiet,
+                 s.method == Method::Dam);
+}
+
+int resume(const std::string& dir, const std::string& backend, bool quiet) {
+  std::string why_not;
+  const Resumer resumer = mpm_backend(backend, why_not).resume;
+  if (!resumer) {
+    std::cerr << "runout: --backend " << backend << ": " << why_not << "\n";
+    return kUnavailable;
   }
-  progress.finish();
-  const double rate = r.wall_seconds > 0 ? r.particles * double(r.steps) / r.wall_seconds : 0;
-  if (s.method == Method::Dam)
-    std::printf("%s (depth-averaged): %d elements, %ld steps to t = %.4g s in %.3f s\n",
-                s.name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds);
-  else
-    std::printf("%s: %d particles, %ld steps to t = %.4g s in %.2f s (%.3g particle-steps/s, %d threads)\n",
-                s.name.c_str(), r.particles, r.steps, r.end_time, r.wall_seconds, rate,
-                omp_get_max_threads());
-  if (r.at_rest) std::printf("the slide came to rest at t = %.4g s\n", r.end_time);
-  std::printf("output: %s (%d frames)\n", r.pvd_path.c_str(), r.frames);
-  if (r.failed) {
-    std::cerr << "runout: run stopped: " << r.failure << "\nrunout: the " << r.frames
-              << " frames written before it are kept in " << opt.out_dir << "\n";
-    return kBlowUp;
-  }
-  return kOk;
+  RunOptions opt;
+  opt.out_dir = dir;
+  return execute(resumer, opt, quiet, false);
 }
 
 int info() {
@@ -174,6 +232,20 @@ int main(int argc, char** argv) {
   std::string backend = "cpu";
   run_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
       ->check(CLI::IsMember({"cpu", "cuda"}));
+  double checkpoint_every = 0;
+  run_cmd->add_option("--checkpoint-every", checkpoint_every,
+                      "Write checkpoint.bin every SECONDS of simulated time (rounded to "
+                      "history rows), for `runout resume`")
+      ->check(CLI::PositiveNumber);
+  std::string resume_dir;
+  CLI::App* resume_cmd = app.add_subcommand(
+      "resume", "Continue a run from the checkpoint.bin in its output folder");
+  resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")->required();
+  resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  resume_cmd->add_flag("-q,--quiet", quiet, "No progress output");
+  resume_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
   CLI::App* check_cmd =
       app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
   add_scene_args(check_cmd, check_args);
@@ -197,7 +269,8 @@ int main(int argc, char** argv) {
   }
   if (threads > 0) omp_set_num_threads(threads);
   try {
-    if (*run_cmd) return run(load(run_args), out, backend, quiet);
+    if (*run_cmd) return run(load(run_args), out, backend, quiet, checkpoint_every);
+    if (*resume_cmd) return resume(resume_dir, backend, quiet);
     if (*check_cmd && budget) return budget_check(load(check_args), *budget);
     if (*check_cmd) return check(load(check_args));
     if (*study_cmd) return run_study(study_args);

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <sstream>
 #include <utility>
 
 #include "cuda_simulation.cuh"
@@ -106,7 +105,8 @@ struct BoxOp {
   }
 };
 
-// The largest signal speed and the number of non-finite ones.
+// The largest signal speed and the number of particles at fault: a
+// non-finite speed, or -1 where the particle failed a guard (guards.hpp).
 struct SpeedStat {
   double max;
   int bad;
@@ -120,7 +120,7 @@ struct SpeedOp {
   }
   __device__ SpeedStat load(int i) const {
     const double s = speed[i];
-    return isfinite(s) ? SpeedStat{s, 0} : SpeedStat{0.0, 1};
+    return isfinite(s) && s >= 0.0 ? SpeedStat{s, 0} : SpeedStat{0.0, 1};
   }
 };
 
@@ -258,12 +258,13 @@ __device__ inline double cell_mean(const CellSums& cs, int c) {
 
 __global__ void stress_kernel(ParticleView P, Gradients L, const int* cell, CellSums cs,
                               bool smooth, const MaterialParams* mats, double dt, StepScratch s,
-                              double* speed) {
+                              GuardLimits limits, double* speed) {
   const int p = blockIdx.x * blockDim.x + threadIdx.x;
   if (p >= P.n) return;
   VelocityGradient l{L.xx[p], L.xy[p], L.yx[p], L.yy[p]};
   if (smooth) set_volumetric_rate(l, cell_mean(cs, cell[p]));
-  speed[p] = stress_update(P, p, l, mats, dt, s);
+  const double sp = stress_update(P, p, l, mats, dt, s);
+  speed[p] = particle_fault(P, p, limits) == Fault::None ? sp : -1.0;
 }
 
 __device__ inline double mean_stress(const ParticleView& P, int p) {
@@ -311,9 +312,12 @@ bool cuda_device_available(std::string& why_not) {
 struct CudaSimulation::Impl {
   Impl(const Scene& scene, const Particles& particles);
 
-  void fit_grid();
+  void fit_grid(double dt);
   void sort_by_cell();
   void step(double dt);
+  void download(Particles& out);
+  // The failure of the step about to end, with the particle at fault.
+  [[noreturn]] void fail(double dt);
 
   // Host-side state.
   Base base;
@@ -327,6 +331,7 @@ struct CudaSimulation::Impl {
   double max_signal_speed = 0;
   double time = 0, last_dt = 0, basal_shear_force = 0;
   long steps = 0;
+  GuardLimits limits;
 
   // Device state.
   ParticleSet sets[2];
@@ -420,27 +425,25 @@ CudaSimulation::Impl::Impl(const Scene& scene, const Particles& P)
   double smax = 0;
   for (int p = 0; p < n; ++p) smax = std::max(smax, cfl_speed(hv, p, materials[hv.material[p]]));
   max_signal_speed = smax;
+  limits = guard_limits(scene, materials, P);
 }
 
-void CudaSimulation::Impl::fit_grid() {
+void CudaSimulation::Impl::fail(double dt) {
+  Particles host;
+  download(host);
+  throw NumericalFailure(describe_faults(host, limits, steps, time, dt));
+}
+
+void CudaSimulation::Impl::fit_grid(double dt) {
   const ParticleView P = particles();
   cuda::reduce(n, BoxOp{P.x, P.y}, reinterpret_cast<Box*>(partials.get()), box.get());
   Box b;
   RUNOUT_CUDA_CHECK(cudaMemcpy(&b, box.get(), sizeof b, cudaMemcpyDeviceToHost));
-  if (b.bad > 0) {
-    std::ostringstream msg;
-    msg << "numerical blow-up at step " << steps << " (t = " << time << " s): " << b.bad
-        << " particle(s) with a non-finite position";
-    throw NumericalFailure(msg.str());
-  }
-  if (!(b.xmin >= xmin_domain - h && b.ymin >= ymin_domain - h && b.xmax <= xmax_domain + h &&
-        b.ymax <= ymax_domain + h)) {
-    std::ostringstream msg;
-    msg << "particles left the grid domain at step " << steps << " (t = " << time
-        << " s): they span x " << b.xmin << ".." << b.xmax << ", y " << b.ymin << ".." << b.ymax
-        << "; enlarge [grid] min/max if the slide really goes there";
-    throw NumericalFailure(msg.str());
-  }
+  // As the CPU driver: the end of every step checks the particles; this
+  // catches particles given outside the domain.
+  if (b.bad > 0 || !(b.xmin >= limits.xmin && b.ymin >= limits.ymin && b.xmax <= limits.xmax &&
+                     b.ymax <= limits.ymax))
+    fail(dt);
   const auto cell = [this](double v, double origin) {
     return static_cast<int>(std::floor((v - origin) / h));
   };
@@ -494,7 +497,7 @@ void CudaSimulation::Impl::sort_by_cell() {
 }
 
 void CudaSimulation::Impl::step(double dt) {
-  fit_grid();
+  fit_grid(dt);
   sort_by_cell();
   const GridView g = grid;
   const ParticleView P = particles();
@@ -527,7 +530,7 @@ void CudaSimulation::Impl::step(double dt) {
   gradient_kernel<<<pb, kThreads>>>(P, g, c, L, cell, cs, smooth);
   RUNOUT_CUDA_LAUNCHED("velocity_gradient");
   stress_kernel<<<pb, kThreads>>>(P, L, cell, cs, smooth, device_materials.get(), dt, s,
-                                  speed.get());
+                                  limits, speed.get());
   RUNOUT_CUDA_LAUNCHED("stress_update");
   if (smooth) {
     clear_cells();
@@ -550,13 +553,7 @@ void CudaSimulation::Impl::step(double dt) {
   }
   StepScalars host;
   RUNOUT_CUDA_CHECK(cudaMemcpy(&host, out, sizeof host, cudaMemcpyDeviceToHost));
-  if (host.speed.bad > 0) {
-    std::ostringstream msg;
-    msg << "numerical blow-up at step " << steps << " (t = " << time << " s, dt = " << dt
-        << " s): " << host.speed.bad
-        << " particle(s) with non-finite stress, volume or velocity";
-    throw NumericalFailure(msg.str());
-  }
+  if (host.speed.bad > 0) fail(dt);
   max_signal_speed = host.speed.max;
   basal_shear_force = host.basal.v;
   time += dt;
@@ -587,6 +584,22 @@ void CudaSimulation::advance_to(double t) {
   }
 }
 
+StepCounters CudaSimulation::counters() const {
+  const Impl& m = *impl_;
+  return StepCounters{m.time, m.steps, m.last_dt, m.basal_shear_force, m.max_signal_speed,
+                      m.limits.max_speed};
+}
+
+void CudaSimulation::restore(const StepCounters& c) {
+  Impl& m = *impl_;
+  m.time = c.time;
+  m.steps = c.steps;
+  m.last_dt = c.last_dt;
+  m.basal_shear_force = c.basal_shear_force;
+  m.max_signal_speed = c.max_signal_speed;
+  m.limits.max_speed = c.speed_limit;
+}
+
 double CudaSimulation::time() const { return impl_->time; }
 long CudaSimulation::steps() const { return impl_->steps; }
 double CudaSimulation::last_dt() const { return impl_->last_dt; }
@@ -597,8 +610,10 @@ const std::vector<MaterialParams>& CudaSimulation::materials() const { return im
 const StepConfig& CudaSimulation::config() const { return impl_->config; }
 int CudaSimulation::size() const { return impl_->n; }
 
-void CudaSimulation::download(Particles& out) const {
-  Impl& m = *impl_;
+void CudaSimulation::download(Particles& out) const { impl_->download(out); }
+
+void CudaSimulation::Impl::download(Particles& out) {
+  Impl& m = *this;
   out.resize(m.n);
   if (m.n == 0) return;
   // Unsort into the spare set, then copy each array straight into out.

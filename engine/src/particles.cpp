@@ -2,10 +2,20 @@
 
 namespace runout {
 
+std::array<std::vector<double>*, 16> Particles::double_arrays() {
+  return {&x, &y, &vx, &vy, &mass, &vol0, &vol, &sxx, &syy, &sxy, &szz, &xi, &gamma_dot, &su,
+          &x0, &y0};
+}
+
+std::array<const std::vector<double>*, 16> Particles::double_arrays() const {
+  const auto a = const_cast<Particles*>(this)->double_arrays();
+  std::array<const std::vector<double>*, 16> out;
+  for (std::size_t k = 0; k < a.size(); ++k) out[k] = a[k];
+  return out;
+}
+
 void Particles::resize(int n) {
-  for (auto* a : {&x, &y, &vx, &vy, &mass, &vol0, &vol, &sxx, &syy, &sxy, &szz,
-                  &xi, &gamma_dot, &su, &x0, &y0})
-    a->assign(n, 0.0);
+  for (auto* a : double_arrays()) a->assign(n, 0.0);
   body.assign(n, 0);
   material.assign(n, 0);
   id.assign(n, 0);
@@ -24,9 +34,7 @@ void gather(std::vector<T>& a, const std::vector<int>& order, std::vector<T>& sc
 
 void Particles::permute(const std::vector<int>& order) {
   std::vector<double> d;
-  for (auto* a : {&x, &y, &vx, &vy, &mass, &vol0, &vol, &sxx, &syy, &sxy, &szz, &xi, &gamma_dot,
-                  &su, &x0, &y0})
-    gather(*a, order, d);
+  for (auto* a : double_arrays()) gather(*a, order, d);
   std::vector<int> i;
   gather(body, order, i);
   gather(material, order, i);

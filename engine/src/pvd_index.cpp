@@ -23,11 +23,17 @@ std::string xml_attribute(const std::string& text) {
 
 }  // namespace
 
-PvdIndex::PvdIndex(std::string path) : path_(std::move(path)) {}
+PvdIndex::PvdIndex(std::string path, Entries entries)
+    : path_(std::move(path)), frames_(std::move(entries)) {
+  if (!frames_.empty()) write();
+}
 
 void PvdIndex::add(double time, const std::string& relative_file) {
   frames_.emplace_back(time, relative_file);
+  write();
+}
 
+void PvdIndex::write() const {
   std::string xml =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"

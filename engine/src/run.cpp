@@ -1,5 +1,7 @@
 #include "runout/run.hpp"
 
+#include <stdexcept>
+
 #include "run_schedule.hpp"
 #include "runout/dam_output.hpp"
 
@@ -13,8 +15,22 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   return run_mpm(scene, options, start, sim, [&]() -> const Particles& { return sim.particles(); });
 }
 
+RunSummary resume_scene(const RunOptions& options) {
+  const auto start = Clock::now();
+  Scene scene;
+  Checkpoint cp = load_for_resume(options, scene);
+  // The particles in the memory order they had, with the step count that
+  // decides when they are next reordered: the run goes on bit for bit.
+  Simulation sim(scene, std::move(cp.particles));
+  sim.restore(cp.state.counters);
+  return run_mpm(scene, options, start, sim, [&]() -> const Particles& { return sim.particles(); },
+                 &cp.state.schedule);
+}
+
 RunSummary run_dam(const Scene& scene, const RunOptions& options) {
   const auto start = Clock::now();
+  if (options.checkpoint_every > 0)
+    throw std::invalid_argument("the depth-averaged model writes no checkpoints");
   DamSolver dam(scene);  // before the folder: a scene it cannot run leaves none
   const fs::path dir = prepare_folder(scene, options);
 
@@ -40,7 +56,7 @@ RunSummary run_dam(const Scene& scene, const RunOptions& options) {
     history.append(row);
     return rest.at_rest(row.time, row.kinetic_energy);
   };
-  run_schedule(scene, options, start, dam, record, write_frame, summary);
+  run_schedule(scene, options, start, dam, 0, record, write_frame, 0, [](long) {}, summary);
   return summary;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "runout/atomic_file.hpp"
+#include "runout/checkpoint.hpp"
 #include "runout/history.hpp"
 #include "runout/morphology.hpp"
 #include "runout/run.hpp"
@@ -32,7 +33,7 @@ inline void clear_previous_output(const fs::path& dir) {
     const std::string ext = entry.path().extension().string();
     const bool profile = name.rfind("profile_", 0) == 0 && ext == ".csv";
     if (ext == ".vtu" || ext == ".vtp" || ext == ".pvd" || profile || name == "history.csv" ||
-        name == "scene.resolved.toml")
+        name == "scene.resolved.toml" || name == kCheckpointFile)
       fs::remove(entry.path());
   }
 }
@@ -61,7 +62,11 @@ inline std::vector<double> base_polyline(const Scene& s) {
 // peak for `duration` seconds (scene time.rest_*).
 class RestDetector {
  public:
-  RestDetector(double fraction, double duration) : fraction_(fraction), duration_(duration) {}
+  // peak and since: where a checkpointed detector stood.
+  RestDetector(double fraction, double duration, double peak = 0.0, double since = -1.0)
+      : fraction_(fraction), duration_(duration), peak_(peak), since_(since) {}
+  double peak() const { return peak_; }
+  double since() const { return since_; }
   bool at_rest(double time, double kinetic_energy) {
     if (fraction_ <= 0.0) return false;
     peak_ = std::max(peak_, kinetic_energy);
@@ -75,7 +80,7 @@ class RestDetector {
 
  private:
   double fraction_, duration_;
-  double peak_ = 0.0, since_ = -1.0;
+  double peak_, since_;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -94,52 +99,105 @@ inline fs::path prepare_folder(const Scene& scene, const RunOptions& options) {
   return dir;
 }
 
+inline double history_interval(const Scene& scene) {
+  return scene.time.output_interval / kHistoryPerFrame;
+}
+
+// --checkpoint-every in history rows: the nearest whole number, at least one.
+inline long checkpoint_rows(const Scene& scene, double every) {
+  return every > 0.0 ? std::max(1L, std::lround(every / history_interval(scene))) : 0;
+}
+
 // The schedule every method follows: a history row every output interval /
 // kHistoryPerFrame, a frame every output interval, at the end and at rest.
-// record() appends a row and says whether the slide is at rest.
-template <class Model, class Record, class WriteFrame>
+// record() appends a row and says whether the slide is at rest. A fresh run
+// (first_row 0) starts with frame 0 and row 0 at t = 0; a resumed one goes
+// on after the row of its checkpoint. checkpoint(k) follows every
+// checkpoint_rows-th row k but the last (a run that reaches it is done) and
+// one at rest.
+template <class Model, class Record, class WriteFrame, class Checkpoint>
 void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_point start,
-                  Model& model, Record record, WriteFrame write_frame, RunSummary& summary) {
-  write_frame();
-  record();
-  const double dt_history = scene.time.output_interval / kHistoryPerFrame;
+                  Model& model, long first_row, Record record, WriteFrame write_frame,
+                  long every, Checkpoint checkpoint, RunSummary& summary) {
+  const long first_step = model.steps();
+  if (first_row == 0) {
+    write_frame();
+    record();
+  }
+  const double dt_history = history_interval(scene);
   const long rows = std::lround(std::ceil(scene.time.end / dt_history - 1e-9));
   try {
-    for (long k = 1; k <= rows; ++k) {
+    for (long k = first_row + 1; k <= rows; ++k) {
       model.advance_to(std::min(scene.time.end, k * dt_history));
       summary.at_rest = record();
       if (k % kHistoryPerFrame == 0 || k == rows || summary.at_rest) write_frame();
       if (options.on_progress)
         options.on_progress({model.time(), scene.time.end, model.steps(), seconds_since(start)});
       if (summary.at_rest) break;
+      if (every > 0 && k % every == 0 && k < rows) checkpoint(k);
     }
   } catch (const NumericalFailure& e) {
     summary.failed = true;
     summary.failure = e.what();
   }
   summary.steps = model.steps();
+  summary.steps_run = summary.steps - first_step;
   summary.end_time = model.time();
   summary.wall_seconds = seconds_since(start);
 }
 
+// The folder of a run being resumed from its checkpoint, put back as it was
+// when the checkpoint was written: history rows, frames and profiles
+// written after it (a killed run may have written some) removed, the index
+// rewritten (by the caller's PvdIndex), and temporaries of writes the kill
+// interrupted deleted.
+inline void rewind_folder(const fs::path& dir, const ScheduleState& state) {
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    const std::string ext = entry.path().extension().string();
+    int frame = -1;
+    const bool numbered_file =
+        (std::sscanf(name.c_str(), "frame_%d.", &frame) == 1 && (ext == ".vtu" || ext == ".vtp")) ||
+        (std::sscanf(name.c_str(), "profile_%d.", &frame) == 1 && ext == ".csv");
+    const bool temporary = name[0] == '.' && name.find(".tmp.") != std::string::npos;
+    if ((numbered_file && frame >= state.frames) || temporary) fs::remove(entry.path());
+  }
+  keep_history_rows((dir / "history.csv").string(), state.row + 1);
+}
+
+// The scene and state of a run to resume from the checkpoint in
+// options.out_dir, with the folder rewound to it. Throws CheckpointError,
+// or SceneError for a stored scene this build does not read.
+inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
+  const fs::path dir(options.out_dir);
+  const std::string path = (dir / kCheckpointFile).string();
+  Checkpoint cp = read_checkpoint(path);
+  scene = parse_scene(cp.state.scene_toml, path + " (its scene)");
+  rewind_folder(dir, cp.state.schedule);
+  return cp;
+}
 
 // A whole MPM run with any driver of the MPM step (the CPU Simulation, the
 // CUDA one): particles() gives the current particles on the host, which for
-// a device driver means a copy back, done for frames and history rows only.
+// a device driver means a copy back, done for frames, history rows and
+// checkpoints only. resumed: the schedule's state from a checkpoint, whose
+// counters and particles the driver was built with; null for a fresh run.
 template <class Driver, class HostParticles>
 RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_point start,
-                   Driver& sim, HostParticles particles) {
-  const fs::path dir = prepare_folder(scene, options);
+                   Driver& sim, HostParticles particles,
+                   const ScheduleState* resumed = nullptr) {
+  const fs::path dir = resumed ? fs::path(options.out_dir) : prepare_folder(scene, options);
   const BaseView base = sim.base().view();
   const double spacing = sim.particle_spacing();
   RunSummary summary;
   summary.particles = particles().size();
   summary.pvd_path = (dir / (scene.name + ".pvd")).string();
-  PvdIndex pvd(summary.pvd_path);
-  HistoryWriter history((dir / "history.csv").string());
+  PvdIndex pvd(summary.pvd_path, resumed ? resumed->pvd : PvdIndex::Entries{});
+  HistoryWriter history((dir / "history.csv").string(), resumed != nullptr);
   FrameInfo info{0.0, spacing, base_polyline(scene), {}};
   for (const MaterialParams& m : sim.materials()) info.strengths.push_back(m.strength);
 
+  if (resumed) summary.frames = resumed->frames;
   const auto write_frame = [&] {
     const Particles& P = particles();
     const int frame = summary.frames++;
@@ -150,8 +208,11 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
                       slide_profile(P, base, scene.grid.cell_size, spacing));
     pvd.add(sim.time(), numbered("frame", frame, "vtu"));
   };
-  const double initial_toe = measure_slide(particles(), base, spacing).toe_s;
-  RestDetector rest(scene.time.rest_fraction, scene.time.rest_duration);
+  const double initial_toe =
+      resumed ? resumed->initial_toe : measure_slide(particles(), base, spacing).toe_s;
+  RestDetector rest = resumed ? RestDetector(scene.time.rest_fraction, scene.time.rest_duration,
+                                             resumed->rest_peak, resumed->rest_since)
+                              : RestDetector(scene.time.rest_fraction, scene.time.rest_duration);
   const auto record = [&] {
     const Particles& P = particles();
     const SlideMorphology shape = measure_slide(P, base, spacing);
@@ -159,7 +220,26 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
                                    sim.steps(), sim.last_dt(), sim.basal_shear_force()));
     return rest.at_rest(sim.time(), shape.kinetic_energy);
   };
-  run_schedule(scene, options, start, sim, record, write_frame, summary);
+
+  const long every =
+      resumed ? resumed->checkpoint_rows : checkpoint_rows(scene, options.checkpoint_every);
+  const std::string checkpoint_path = (dir / kCheckpointFile).string();
+  const std::string scene_toml = to_toml(scene);
+  const auto checkpoint = [&](long k) {
+    history.sync();  // the rows it counts reach the disk before it does
+    const ScheduleState state{k,           every,       summary.frames, pvd.entries(),
+                              rest.peak(), rest.since(), initial_toe};
+    write_checkpoint(checkpoint_path, CheckpointState{scene_toml, sim.counters(), state},
+                     particles());
+    summary.checkpoint_path = checkpoint_path;
+    summary.checkpoint_time = sim.time();
+  };
+  if (resumed) {
+    summary.checkpoint_path = checkpoint_path;
+    summary.checkpoint_time = summary.resumed_from = sim.time();
+  }
+  run_schedule(scene, options, start, sim, resumed ? resumed->row : 0, record, write_frame,
+               every, checkpoint, summary);
   return summary;
 }
 

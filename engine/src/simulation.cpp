@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include "runout/materials.hpp"
 #include "runout/seeding.hpp"
@@ -84,29 +83,43 @@ Simulation::Simulation(const Scene& scene, Particles particles)
   double smax = 0;
   for (int p = 0; p < n; ++p) smax = std::max(smax, cfl_speed(P, p, materials_[P.material[p]]));
   max_signal_speed_ = smax;
+  limits_ = guard_limits(scene, materials_, particles_);
 }
 
-void Simulation::fit_grid() {
+StepCounters Simulation::counters() const {
+  return StepCounters{time_, steps_, last_dt_, basal_shear_force_, max_signal_speed_,
+                      limits_.max_speed};
+}
+
+void Simulation::restore(const StepCounters& c) {
+  time_ = c.time;
+  steps_ = c.steps;
+  last_dt_ = c.last_dt;
+  basal_shear_force_ = c.basal_shear_force;
+  max_signal_speed_ = c.max_signal_speed;
+  limits_.max_speed = c.speed_limit;
+}
+
+void Simulation::fit_grid(double dt) {
   const ParticleView P = particles_.view();
   double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
   double xmax = -xmin, ymax = -xmin;
-#pragma omp parallel for reduction(min : xmin, ymin) reduction(max : xmax, ymax) if (P.n > kParallelMin)
+  int non_finite = 0;  // min and max pass over NaN
+#pragma omp parallel for reduction(min : xmin, ymin) reduction(max : xmax, ymax) \
+    reduction(+ : non_finite) if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) {
     xmin = std::min(xmin, P.x[p]);
     xmax = std::max(xmax, P.x[p]);
     ymin = std::min(ymin, P.y[p]);
     ymax = std::max(ymax, P.y[p]);
+    non_finite += !(std::isfinite(P.x[p]) && std::isfinite(P.y[p]));
   }
-  // GIMP lets a particle sit up to lp past a wall; a whole cell past it
-  // means it went through.
-  const Eigen::Vector2d lo = domain_min_.array() - h_, hi = domain_max_.array() + h_;
-  if (!(xmin >= lo.x() && ymin >= lo.y() && xmax <= hi.x() && ymax <= hi.y())) {
-    std::ostringstream msg;
-    msg << "particles left the grid domain at step " << steps_ << " (t = " << time_
-        << " s): they span x " << xmin << ".." << xmax << ", y " << ymin << ".." << ymax
-        << "; enlarge [grid] min/max if the slide really goes there";
-    throw NumericalFailure(msg.str());
-  }
+  // The end of every step checks the particles; this catches particles
+  // given (or changed between steps) outside the domain before they index
+  // the grid.
+  const GuardLimits& g = limits_;
+  if (non_finite > 0 || !(xmin >= g.xmin && ymin >= g.ymin && xmax <= g.xmax && ymax <= g.ymax))
+    throw NumericalFailure(describe_faults(particles_, limits_, steps_, time_, dt));
   const auto cell = [this](double v, double origin) {
     return static_cast<int>(std::floor((v - origin) / h_));
   };
@@ -202,7 +215,7 @@ void Simulation::smooth_mean_stress() {
 }
 
 void Simulation::step(double dt) {
-  fit_grid();
+  fit_grid(dt);
   bin_particles();
   if (steps_ % kReorderInterval == 0) {
     // Store the particles in block order, so that the block-by-block loops
@@ -240,22 +253,14 @@ void Simulation::step(double dt) {
   double smax = 0;
   int bad = 0;
   const MaterialParams* mats = materials_.data();
+  const GuardLimits limits = limits_;
 #pragma omp parallel for reduction(max : smax) reduction(+ : bad) if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) {
-    const double sp = stress_update(P, p, L[p], mats, dt, s);
-    if (std::isfinite(sp)) {
-      smax = std::max(smax, sp);
-    } else {
-      ++bad;
-    }
+    smax = std::max(smax, stress_update(P, p, L[p], mats, dt, s));
+    bad += particle_fault(P, p, limits) != Fault::None;
   }
+  if (bad > 0) throw NumericalFailure(describe_faults(particles_, limits_, steps_, time_, dt));
   if (smooth_volumetric_) smooth_mean_stress();
-  if (bad > 0) {
-    std::ostringstream msg;
-    msg << "numerical blow-up at step " << steps_ << " (t = " << time_ << " s, dt = " << dt
-        << " s): " << bad << " particle(s) with non-finite stress, volume or velocity";
-    throw NumericalFailure(msg.str());
-  }
   max_signal_speed_ = smax;
   basal_shear_force_ = basal;
   time_ += dt;

@@ -41,6 +41,10 @@ class CudaSimulation {
   // Steps with the CFL dt, shortening the last one to land on t exactly.
   void advance_to(double t);
 
+  // As Simulation: the counters, and a driver continuing from them.
+  StepCounters counters() const;
+  void restore(const StepCounters& counters);
+
   double time() const;
   long steps() const;
   double last_dt() const;
@@ -63,5 +67,8 @@ class CudaSimulation {
 // run_scene on the GPU (engine/cuda/run_cuda.cpp): the same folder, frames
 // and history.
 RunSummary run_scene_cuda(const Scene& scene, const RunOptions& options);
+// resume_scene on the GPU. The device sums in no fixed order, so a resumed
+// run matches an uninterrupted one to rounding, not bit for bit.
+RunSummary resume_scene_cuda(const RunOptions& options);
 
 }  // namespace runout

@@ -28,14 +28,24 @@ HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& sh
                            double runout, double time, long step, double dt,
                            double basal_shear_force);
 
+// Cuts history.csv back to its header and first `rows` rows (a resumed
+// run's rows up to its checkpoint), dropping whatever a killed run wrote
+// after them, a torn last line included. Throws std::runtime_error when the
+// file is missing or holds fewer rows.
+void keep_history_rows(const std::string& path, long rows);
+
 class HistoryWriter {
  public:
-  explicit HistoryWriter(const std::string& path);  // writes the header
+  // Writes the header, or with append (a resumed run) goes on after the
+  // rows the file holds.
+  explicit HistoryWriter(const std::string& path, bool append = false);
   ~HistoryWriter();
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
 
   void append(const HistoryRow& row);
+  // The rows so far on the disk (fsync), before a checkpoint counts them.
+  void sync();
 
  private:
   std::string path_;

@@ -3,6 +3,7 @@
 // the storage (host); ParticleView is the plain-pointer handle the
 // per-particle stage functions take, so the same functions run in CUDA
 // kernels on device copies.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct Particles {
   std::vector<std::int64_t> id;
 
   int size() const { return static_cast<int>(x.size()); }
+  // The double arrays, always in this order (x .. y0 as declared).
+  std::array<std::vector<double>*, 16> double_arrays();
+  std::array<const std::vector<double>*, 16> double_arrays() const;
   void resize(int n);
   ParticleView view();
   // Reorders every array so that particle k becomes order[k].

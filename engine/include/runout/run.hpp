@@ -17,11 +17,17 @@ struct RunProgress {
 struct RunOptions {
   std::string out_dir;
   std::function<void(const RunProgress&)> on_progress;  // called after each history row
+  // A checkpoint (checkpoint.hpp) every this many simulated seconds,
+  // rounded to whole history rows; 0: none. MPM only; a resumed run keeps
+  // the interval of its checkpoint.
+  double checkpoint_every = 0;
 };
 
 struct RunSummary {
   int particles = 0;  // elements for the depth-averaged model
-  long steps = 0;
+  long steps = 0;        // the step count at the end
+  long steps_run = 0;    // the steps this call took: all of them unless resumed
+  double resumed_from = -1;  // the checkpoint's time in a resumed run
   int frames = 0;
   double end_time = 0;
   double wall_seconds = 0;
@@ -29,6 +35,10 @@ struct RunSummary {
   bool at_rest = false;  // ended by the scene's at-rest criterion
   bool failed = false;
   std::string failure;  // the NumericalFailure message when failed
+  // The last checkpoint written (or resumed from), empty when none, and its
+  // simulated time.
+  std::string checkpoint_path;
+  double checkpoint_time = 0;
 };
 
 // Runs to scene.time.end or until at rest. A numerical failure ends the run early with
@@ -37,9 +47,19 @@ struct RunSummary {
 // output cannot be written.
 RunSummary run_scene(const Scene& scene, const RunOptions& options);
 
+// Continues the MPM run whose checkpoint.bin is in options.out_dir: the
+// folder is rewound to the checkpoint (later history rows, frames and
+// profiles removed, the index rewritten) and the run goes on as if never
+// stopped; on the CPU with the same number of threads, bit for bit.
+// options.checkpoint_every is ignored. Throws CheckpointError for a missing
+// or unusable checkpoint, std::runtime_error when the output cannot be
+// written.
+RunSummary resume_scene(const RunOptions& options);
+
 // The same run with the depth-averaged model (dam.hpp; scene.method = dam): the same folder
 // layout, history columns and schedule, the frames frame_NNNNN.vtp. Throws
-// SceneError, before any output is written, for a scene it cannot run.
+// SceneError, before any output is written, for a scene it cannot run, and
+// std::invalid_argument for options.checkpoint_every (it has no checkpoints).
 RunSummary run_dam(const Scene& scene, const RunOptions& options);
 
 }  // namespace runout

@@ -10,6 +10,7 @@
 
 #include "runout/base.hpp"
 #include "runout/grid.hpp"
+#include "runout/guards.hpp"
 #include "runout/material.hpp"
 #include "runout/particles.hpp"
 #include "runout/scene.hpp"
@@ -17,11 +18,23 @@
 
 namespace runout {
 
-// A step produced non-finite values or lost a particle from the domain.
+// A step produced non-finite values, lost a particle from the domain, sped
+// one past any physical speed or inverted or collapsed its volume (guards.hpp).
 // The state is then unusable; what was written before stays good.
 class NumericalFailure : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A driver's state besides its particles: with the particles in their
+// memory order, enough to continue a run bit for bit (checkpoint.hpp).
+struct StepCounters {
+  double time = 0;
+  long steps = 0;
+  double last_dt = 0;
+  double basal_shear_force = 0;
+  double max_signal_speed = 0;  // sets the next stable_dt
+  double speed_limit = 0;       // GuardLimits::max_speed, fixed by the first particles
 };
 
 class Simulation {
@@ -40,6 +53,11 @@ class Simulation {
   // Steps with the CFL dt, shortening the last one to land on t exactly.
   void advance_to(double t);
 
+  // The counters, and a driver that continues from them (its particles
+  // given to the constructor in the memory order they had).
+  StepCounters counters() const;
+  void restore(const StepCounters& counters);
+
   double time() const { return time_; }
   long steps() const { return steps_; }
   double last_dt() const { return last_dt_; }
@@ -53,9 +71,10 @@ class Simulation {
   const Particles& particles() const { return particles_; }
   const Grid& grid() const { return grid_; }
   const StepConfig& config() const { return config_; }
+  const GuardLimits& limits() const { return limits_; }
 
  private:
-  void fit_grid();
+  void fit_grid(double dt);
   void bin_particles();  // and computes the particles' stencils
   template <class Stage>
   void scatter(Stage&& stage);
@@ -71,6 +90,7 @@ class Simulation {
   Grid grid_;
   StepConfig config_;
   std::vector<MaterialParams> materials_;
+  GuardLimits limits_;
   std::vector<double> scratch_dx_, scratch_dy_;
   std::vector<Stencil2D> stencils_;
   std::vector<VelocityGradient> gradients_;

@@ -34,13 +34,17 @@ void write_particles_vtu(const std::string& path, const Particles& particles,
 // index atomically, so the index on disk always lists whole frames only.
 class PvdIndex {
  public:
-  explicit PvdIndex(std::string path);
+  using Entries = std::vector<std::pair<double, std::string>>;  // time, file
+  // With entries (a resumed run's), the index is written at once.
+  explicit PvdIndex(std::string path, Entries entries = {});
   void add(double time, const std::string& relative_file);
   const std::string& path() const { return path_; }
+  const Entries& entries() const { return frames_; }
 
  private:
+  void write() const;
   std::string path_;
-  std::vector<std::pair<double, std::string>> frames_;
+  Entries frames_;
 };
 
 }  // namespace runout

@@ -1,0 +1,229 @@
+#include "runout/checkpoint.hpp"
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <type_traits>
+
+#include "runout/atomic_file.hpp"
+
+namespace runout {
+namespace {
+
+// Numbers are stored as the host holds them; every machine the engine
+// builds for is little-endian, which the file format fixes.
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "checkpoints are little-endian");
+
+constexpr char kMagic[8] = {'R', 'U', 'N', 'O', 'U', 'T', 'C', 'K'};
+constexpr std::uint32_t kVersion = 1;
+// magic, version, payload size; the payload; then its checksum.
+constexpr std::size_t kHeaderBytes = sizeof kMagic + 4 + 8;
+constexpr std::size_t kChecksumBytes = 8;
+
+// FNV-1a, 64 bit (Fowler, Noll, Vo): catches a flipped bit or a torn write,
+// which is all a checksum here is for.
+std::uint64_t fnv1a(std::string_view bytes) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char c : bytes) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+class Writer {
+ public:
+  template <class T>
+  void put(T value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  void put_text(std::string_view text) {
+    put<std::uint64_t>(text.size());
+    out_.append(text);
+  }
+  template <class T>
+  void put_array(const std::vector<T>& a) {
+    out_.append(reinterpret_cast<const char*>(a.data()), a.size() * sizeof(T));
+  }
+  std::string& bytes() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+// Reads the payload; any read past its end is a truncated file.
+class Reader {
+ public:
+  Reader(std::string_view bytes, const std::string& source) : in_(bytes), source_(source) {}
+  template <class T>
+  T get() {
+    T value;
+    std::memcpy(&value, take(sizeof value), sizeof value);
+    return value;
+  }
+  std::string get_text() {
+    const std::uint64_t n = get<std::uint64_t>();
+    if (n > in_.size() - pos_) fail("a text longer than the file");
+    return std::string(take(n), n);
+  }
+  template <class T>
+  void get_array(std::vector<T>& a, std::size_t n) {
+    a.resize(n);
+    std::memcpy(a.data(), take(n * sizeof(T)), n * sizeof(T));
+  }
+  std::size_t left() const { return in_.size() - pos_; }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw CheckpointError(source_ + ": " + what + " at byte " +
+                          std::to_string(kHeaderBytes + pos_));
+  }
+
+ private:
+  const char* take(std::size_t n) {
+    if (n > left()) fail("truncated: the data ends");
+    const char* p = in_.data() + pos_;
+    pos_ += n;
+    return p;
+  }
+  std::string_view in_;
+  std::size_t pos_ = 0;
+  const std::string& source_;
+};
+
+// Bytes of one particle: the double arrays, body and material, id.
+constexpr std::size_t kParticleBytes = 16 * 8 + 2 * 4 + 8;
+
+void put_particles(Writer& w, const Particles& P) {
+  w.put<std::uint64_t>(P.size());
+  for (const auto* a : P.double_arrays()) w.put_array(*a);
+  w.put_array(P.body);
+  w.put_array(P.material);
+  w.put_array(P.id);
+}
+
+Particles get_particles(Reader& r) {
+  const std::uint64_t n = r.get<std::uint64_t>();
+  if (n > r.left() / kParticleBytes) r.fail("more particles than the file holds");
+  Particles P;
+  for (auto* a : P.double_arrays()) r.get_array(*a, n);
+  r.get_array(P.body, n);
+  r.get_array(P.material, n);
+  r.get_array(P.id, n);
+  return P;
+}
+
+void put_state(Writer& w, const CheckpointState& s) {
+  w.put_text(s.scene_toml);
+  const StepCounters& c = s.counters;
+  w.put<double>(c.time);
+  w.put<std::int64_t>(c.steps);
+  w.put<double>(c.last_dt);
+  w.put<double>(c.basal_shear_force);
+  w.put<double>(c.max_signal_speed);
+  w.put<double>(c.speed_limit);
+  const ScheduleState& k = s.schedule;
+  w.put<std::int64_t>(k.row);
+  w.put<std::int64_t>(k.checkpoint_rows);
+  w.put<std::int64_t>(k.frames);
+  w.put<double>(k.rest_peak);
+  w.put<double>(k.rest_since);
+  w.put<double>(k.initial_toe);
+  w.put<std::uint64_t>(k.pvd.size());
+  for (const auto& [time, file] : k.pvd) {
+    w.put<double>(time);
+    w.put_text(file);
+  }
+}
+
+CheckpointState get_state(Reader& r) {
+  CheckpointState s;
+  s.scene_toml = r.get_text();
+  StepCounters& c = s.counters;
+  c.time = r.get<double>();
+  c.steps = r.get<std::int64_t>();
+  c.last_dt = r.get<double>();
+  c.basal_shear_force = r.get<double>();
+  c.max_signal_speed = r.get<double>();
+  c.speed_limit = r.get<double>();
+  ScheduleState& k = s.schedule;
+  k.row = r.get<std::int64_t>();
+  k.checkpoint_rows = r.get<std::int64_t>();
+  const std::int64_t frames = r.get<std::int64_t>();
+  k.rest_peak = r.get<double>();
+  k.rest_since = r.get<double>();
+  k.initial_toe = r.get<double>();
+  const std::uint64_t entries = r.get<std::uint64_t>();
+  // Each entry holds at least a time and a text length.
+  if (entries > r.left() / 16) r.fail("more index entries than the file holds");
+  for (std::uint64_t e = 0; e < entries; ++e) {
+    const double time = r.get<double>();
+    k.pvd.emplace_back(time, r.get_text());
+  }
+  if (k.row < 0 || k.checkpoint_rows < 1 || frames < 0 ||
+      frames != static_cast<std::int64_t>(k.pvd.size()) || c.steps < 0)
+    r.fail("inconsistent counters");
+  k.frames = static_cast<int>(frames);
+  return s;
+}
+
+}  // namespace
+
+std::string encode_checkpoint(const CheckpointState& state, const Particles& particles) {
+  Writer payload;
+  put_state(payload, state);
+  put_particles(payload, particles);
+  Writer file;
+  file.bytes().append(kMagic, sizeof kMagic);
+  file.put<std::uint32_t>(kVersion);
+  file.put<std::uint64_t>(payload.bytes().size());
+  file.bytes() += payload.bytes();
+  file.put<std::uint64_t>(fnv1a(file.bytes()));
+  return std::move(file.bytes());
+}
+
+Checkpoint decode_checkpoint(std::string_view bytes, const std::string& source) {
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw CheckpointError(source + ": not a Runout checkpoint (no RUNOUTCK header)");
+  if (bytes.size() < kHeaderBytes + kChecksumBytes)
+    throw CheckpointError(source + ": truncated: " + std::to_string(bytes.size()) +
+                          " bytes, shorter than the header");
+  std::uint32_t version;
+  std::uint64_t size;
+  std::memcpy(&version, bytes.data() + sizeof kMagic, sizeof version);
+  std::memcpy(&size, bytes.data() + sizeof kMagic + 4, sizeof size);
+  if (version != kVersion)
+    throw CheckpointError(source + ": checkpoint format version " + std::to_string(version) +
+                          ", this runout reads version " + std::to_string(kVersion));
+  const std::size_t body = bytes.size() - kHeaderBytes - kChecksumBytes;
+  if (size != body)
+    throw CheckpointError(source + ": truncated or padded: the header gives " +
+                          std::to_string(size) + " bytes of data, the file holds " +
+                          std::to_string(body));
+  std::uint64_t stored;
+  std::memcpy(&stored, bytes.data() + bytes.size() - kChecksumBytes, sizeof stored);
+  if (stored != fnv1a(bytes.substr(0, bytes.size() - kChecksumBytes)))
+    throw CheckpointError(source + ": checksum mismatch: the file is corrupt");
+
+  Reader r(bytes.substr(kHeaderBytes, body), source);
+  Checkpoint cp;
+  cp.state = get_state(r);
+  cp.particles = get_particles(r);
+  if (r.left() != 0) r.fail("unread data after the particles");
+  return cp;
+}
+
+void write_checkpoint(const std::string& path, const CheckpointState& state,
+                      const Particles& particles) {
+  write_file_atomically(path, encode_checkpoint(state, particles));
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CheckpointMissing("cannot open checkpoint '" + path + "'");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw CheckpointError("cannot read checkpoint '" + path + "'");
+  return decode_checkpoint(bytes, path);
+}
+
+}  // namespace runout
