@@ -16,8 +16,8 @@
 #include "vtkTable.h"
 
 #include <algorithm>
-
 #include <cmath>
+#include <string>
 
 namespace runout::filters {
 
@@ -29,6 +29,49 @@ std::vector<Vec2> positions_of(vtkPointSet* frame) {
     points[i] = {p[0], p[1]};
   }
   return points;
+}
+
+std::string points_problem(vtkPointSet* frame) {
+  for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i) {
+    double p[3];
+    frame->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      return "Point " + std::to_string(i) + " has a coordinate that is not a finite number.";
+  }
+  return "";
+}
+
+std::string point_array_problem(vtkPointSet* frame, vtkDataArray* array, const char* name,
+                                int components, double limit) {
+  const std::string quoted = std::string("The point array \"") + name + "\"";
+  if (array->GetNumberOfTuples() != frame->GetNumberOfPoints())
+    return quoted + " has " + std::to_string(array->GetNumberOfTuples()) + " tuples for " +
+           std::to_string(frame->GetNumberOfPoints()) + " points.";
+  if (array->GetNumberOfComponents() < components)
+    return quoted + " has " + std::to_string(array->GetNumberOfComponents()) +
+           " component(s), fewer than " + std::to_string(components) + ".";
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c) {
+      const double v = array->GetComponent(i, c);
+      if (!(std::abs(v) <= limit))
+        return quoted + " has a value that is not a finite number" +
+               (limit < 1.7976931348623157e308 ? " within +-" + std::to_string(limit) : "") +
+               " at point " + std::to_string(i) + ".";
+    }
+  return "";
+}
+
+std::string extent_problem(const std::vector<Vec2>& points, double spacing) {
+  if (points.empty()) return "";
+  Vec2 lo = points[0], hi = points[0];
+  for (const Vec2& p : points) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  const double reach = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(hi.x), std::abs(hi.y)});
+  if (reach / spacing < 1073741824.0) return "";
+  return "The points reach " + std::to_string(reach) + " from the origin, more than 2^30 " +
+         "particle spacings of " + std::to_string(spacing) + ": not a Runout particle frame.";
 }
 
 std::vector<double> component_of(vtkDataArray* array, int component) {
@@ -58,7 +101,9 @@ std::vector<std::int64_t> ids_of(vtkDataArray* array) {
 
 double particle_spacing_of(vtkDataObject* frame) {
   vtkDataArray* spacing = frame->GetFieldData()->GetArray("particle_spacing");
-  return spacing && spacing->GetNumberOfTuples() > 0 ? spacing->GetComponent(0, 0) : 0.0;
+  const double value =
+      spacing && spacing->GetNumberOfTuples() > 0 ? spacing->GetComponent(0, 0) : 0.0;
+  return std::isfinite(value) ? value : 0.0;
 }
 
 std::optional<runout::Base> read_base_points(vtkDataObject* frame) {
@@ -69,6 +114,7 @@ std::optional<runout::Base> read_base_points(vtkDataObject* frame) {
   spec.kind = runout::BaseKind::Polyline;
   for (vtkIdType k = 0; k < points->GetNumberOfTuples(); ++k) {
     const Eigen::Vector2d p(points->GetComponent(k, 0), points->GetComponent(k, 1));
+    if (!p.allFinite()) return std::nullopt;
     // A repeated point would make a segment without a direction.
     if (!spec.points.empty() && !(p.x() > spec.points.back().x())) return std::nullopt;
     spec.points.push_back(p);

@@ -32,6 +32,22 @@ namespace runout::filters {
 // The points' (x, y): a run is two-dimensional, z is 0.
 std::vector<Vec2> positions_of(vtkPointSet* frame);
 
+// What makes the frame's points unusable, or "": a coordinate that is not
+// finite (a NaN or infinity in a position would become an index or a bin).
+std::string points_problem(vtkPointSet* frame);
+
+// What makes `array` unusable as the point array `name` of `frame` read
+// with `components` components, or "": a tuple count other than the
+// frame's point count, fewer components, or a value that is not finite or
+// exceeds `limit` in magnitude (particle ids must fit 64-bit integers).
+std::string point_array_problem(vtkPointSet* frame, vtkDataArray* array, const char* name,
+                                int components, double limit = 1.7976931348623157e308);
+
+// What makes the points too far apart for neighbour searches at `spacing`,
+// or "": a bounding box wider than 2^30 spacings, whose cell indices would
+// not fit the 32 bits of PointGrid's keys (any real slide is far smaller).
+std::string extent_problem(const std::vector<Vec2>& points, double spacing);
+
 // Component `component` of every tuple.
 std::vector<double> component_of(vtkDataArray* array, int component = 0);
 
@@ -41,13 +57,15 @@ std::vector<double> magnitude_of(vtkDataArray* array);
 // The array as 64-bit integers (particle_id).
 std::vector<std::int64_t> ids_of(vtkDataArray* array);
 
-// The `particle_spacing` field data (h / ppc), 0 when absent.
+// The `particle_spacing` field data (h / ppc), 0 when absent or not a
+// finite number.
 double particle_spacing_of(vtkDataObject* frame);
 
 // The base from the `base_points` field data, as the engine wrote it: two
 // points at one height are its planar base (s = x, as the engine measures
 // it), more points its polyline. nullopt without base_points, with fewer
-// than two points or with x not strictly increasing.
+// than two points, with x not strictly increasing or with a coordinate
+// that is not finite.
 std::optional<runout::Base> read_base_points(vtkDataObject* frame);
 
 // read_base_points, or the x axis (s = x, d = y) when it gives none.

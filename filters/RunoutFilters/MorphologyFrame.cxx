@@ -21,18 +21,24 @@ namespace runout::filters {
 
 namespace {
 
-// The point array `name` with at least `components` components, or nullptr.
-vtkDataArray* point_array(vtkPointSet* frame, const char* name, int components) {
-  vtkDataArray* a = frame->GetPointData()->GetArray(name);
-  return a && a->GetNumberOfComponents() >= components &&
-                 a->GetNumberOfTuples() == frame->GetNumberOfPoints()
-             ? a
-             : nullptr;
+// The point array `name` with `components` components into `out`; "" or
+// what is missing or wrong with it.
+std::string read_point_array(vtkPointSet* frame, const char* name, int components,
+                             vtkDataArray*& out) {
+  out = frame->GetPointData()->GetArray(name);
+  if (!out)
+    return std::string("The input has no point array \"") + name + "\" with " +
+           std::to_string(components) + " component(s) per point: not a Runout particle frame.";
+  return point_array_problem(frame, out, name, components);
 }
 
-std::string missing_point_array(const char* name, int components) {
-  return std::string("The input has no point array \"") + name + "\" with " +
-         std::to_string(components) + " component(s) per point: not a Runout particle frame.";
+// The base's reach against the spacing, as for the points: the profile
+// bins run along it.
+std::string base_extent_problem(const runout::Base& base, double spacing) {
+  const runout::BaseView view = base.view();
+  std::vector<Vec2> points{{0.0, view.y0}};
+  for (int k = 0; k < view.n; ++k) points.push_back({view.px[k], view.py[k]});
+  return extent_problem(points, spacing);
 }
 
 struct ParticleFrame {
@@ -43,12 +49,12 @@ struct ParticleFrame {
 
 // The frame in the engine's types; "" or the error.
 std::string read_particle_frame(vtkPointSet* frame, ParticleFrame& out) {
-  vtkDataArray* velocity = point_array(frame, "velocity", 3);
-  if (!velocity) return missing_point_array("velocity", 3);
-  vtkDataArray* mass = point_array(frame, "mass", 1);
-  if (!mass) return missing_point_array("mass", 1);
-  vtkDataArray* initial = point_array(frame, "initial_position", 3);
-  if (!initial) return missing_point_array("initial_position", 3);
+  vtkDataArray *velocity, *mass, *initial;
+  for (const std::string& problem :
+       {points_problem(frame), read_point_array(frame, "velocity", 3, velocity),
+        read_point_array(frame, "mass", 1, mass),
+        read_point_array(frame, "initial_position", 3, initial)})
+    if (!problem.empty()) return problem;
   out.spacing = particle_spacing_of(frame);
   if (!(out.spacing > 0))
     return "The input has no field data \"particle_spacing\" (h / ppc, > 0): not a Runout "
@@ -58,10 +64,15 @@ std::string read_particle_frame(vtkPointSet* frame, ParticleFrame& out) {
     return "The input has no field data \"base_points\" (the base polyline: at least two "
            "(x, y, 0) points, x strictly increasing): not a Runout particle frame.";
 
+  const std::vector<Vec2> points = positions_of(frame);
+  for (const std::string& problem :
+       {extent_problem(points, out.spacing), base_extent_problem(*out.base, out.spacing)})
+    if (!problem.empty()) return problem;
+
   runout::Particles& p = out.particles;
   p.x.clear();
   p.y.clear();
-  for (const Vec2& xy : positions_of(frame)) {
+  for (const Vec2& xy : points) {
     p.x.push_back(xy.x);
     p.y.push_back(xy.y);
   }

@@ -11,6 +11,8 @@
 #include "HorstGraben.h"
 #include "ShearBands.h"
 
+#include <string>
+
 using namespace runout::filters;
 
 vtkStandardNewMacro(vtkRunoutHorstGraben);
@@ -32,6 +34,13 @@ int vtkRunoutHorstGraben::RequestData(
   if (!displacementArray)
   {
     vtkErrorMacro("The input has no point array \"displacement\": not a Runout particle frame.");
+    return 1;
+  }
+  const std::string problem = point_array_problem(
+    vtkPointSet::GetData(inputVector[0]), displacementArray, "displacement", 1);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
     return 1;
   }
   BandFrame frame;

@@ -101,6 +101,10 @@ int vtkRunoutMorphology::RequestData(
     vtkErrorMacro(<< error);
     return 1;
   }
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro("The input has no points: an empty profile and an undetermined row.");
+  }
   FillProfile(morphology.profile, profile);
   runout::filters::add_morphology_columns(table);
   runout::filters::append_morphology_row(

@@ -68,8 +68,11 @@ int vtkRunoutMorphologyHistory::RequestData(
 
   // The history has no profile to show: any bin width does.
   runout::filters::FrameMorphology morphology;
-  const std::string error =
-    runout::filters::measure_point_set(input, runout::kMainBodyBinSpacings, morphology);
+  // The engine never writes a frame without particles: in a series, one is
+  // a frame that could not be read (a file the index lists is missing).
+  const std::string error = input->GetNumberOfPoints() == 0
+    ? std::string("the frame has no points (a file the index lists missing or unreadable?).")
+    : runout::filters::measure_point_set(input, runout::kMainBodyBinSpacings, morphology);
   if (!error.empty())
   {
     vtkErrorMacro(<< "Time step " << this->CurrentTimeIndex << ": " << error);

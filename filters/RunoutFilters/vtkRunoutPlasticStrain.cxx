@@ -32,6 +32,22 @@ constexpr double FallbackGridSpacing = 0.5;
 // (four arrays per node): refused beyond this many nodes.
 constexpr double MaximumGridNodes = 1e8;
 
+// Why the frame's points, strains or ids cannot be used, or "". Ids are
+// cast to 64-bit integers, so they must lie within their range.
+std::string FrameProblem(vtkPointSet* frame, vtkDataArray* xi, vtkDataArray* ids)
+{
+  std::string problem = points_problem(frame);
+  if (problem.empty())
+  {
+    problem = point_array_problem(frame, xi, xi->GetName() ? xi->GetName() : "", 1);
+  }
+  if (problem.empty())
+  {
+    problem = point_array_problem(frame, ids, "particle_id", 1, 9.2e18);
+  }
+  return problem;
+}
+
 struct NamedField
 {
   const char* Name;
@@ -244,7 +260,8 @@ int vtkRunoutPlasticStrain::RequestData(
 
   vtkDataArray* xiArray = this->GetInputArrayToProcess(0, inputVector);
   vtkDataArray* idArray = input->GetPointData()->GetArray("particle_id");
-  const bool valid = xiArray && idArray;
+  const std::string problem = xiArray && idArray ? FrameProblem(input, xiArray, idArray) : "";
+  const bool valid = xiArray && idArray && problem.empty();
   if (internals.FetchingPrevious)
   {
     // Cached even when invalid (as no strains), so that the next pass does
@@ -268,6 +285,26 @@ int vtkRunoutPlasticStrain::RequestData(
     vtkErrorMacro("The input has no point array \"particle_id\": not a Runout particle frame.");
     return 1;
   }
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 1;
+  }
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro("The input has no points: no strains and an empty grid.");
+  }
+
+  const double particleSpacing = particle_spacing_of(input);
+  const double spacing = this->GridSpacing > 0
+    ? this->GridSpacing
+    : (particleSpacing > 0 ? 2 * particleSpacing : FallbackGridSpacing);
+  const std::string far = extent_problem(positions_of(input), spacing);
+  if (!far.empty())
+  {
+    vtkErrorMacro(<< far);
+    return 1;
+  }
 
   const std::vector<double> xi = component_of(xiArray);
   const std::vector<std::int64_t> ids = ids_of(idArray);
@@ -281,16 +318,12 @@ int vtkRunoutPlasticStrain::RequestData(
   output->GetPointData()->AddArray(make_double_array("plastic_strain_increment", increment));
   output->GetPointData()->AddArray(make_double_array("normalised_plastic_strain", normalised));
 
-  const double particleSpacing = particle_spacing_of(input);
-  const double spacing = this->GridSpacing > 0
-    ? this->GridSpacing
-    : (particleSpacing > 0 ? 2 * particleSpacing : FallbackGridSpacing);
   double bounds[6];
   input->GetBounds(bounds);
   const double nodes = input->GetNumberOfPoints() == 0
     ? 0.0
     : ((bounds[1] - bounds[0]) / spacing + 2) * ((bounds[3] - bounds[2]) / spacing + 2);
-  if (nodes > MaximumGridNodes)
+  if (!(nodes <= MaximumGridNodes) || !std::isfinite(spacing))
   {
     vtkErrorMacro("GridSpacing " << spacing << " gives a grid of " << nodes
                                  << " nodes over the particles: too many. No grid output.");

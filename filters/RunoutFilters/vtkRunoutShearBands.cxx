@@ -9,6 +9,9 @@
 #include "FrameArrays.h"
 #include "ShearBands.h"
 
+#include <cmath>
+#include <string>
+
 using namespace runout::filters;
 
 vtkStandardNewMacro(vtkRunoutShearBands);
@@ -62,10 +65,28 @@ bool vtkRunoutShearBands::FindBands(vtkInformationVector** inputVector, BandFram
     return false;
   }
   frame.spacing = this->ParticleSpacing > 0 ? this->ParticleSpacing : particle_spacing_of(input);
-  if (frame.spacing <= 0)
+  if (!(frame.spacing > 0) || !std::isfinite(frame.spacing))
   {
     vtkErrorMacro("The input has no field data \"particle_spacing\": set ParticleSpacing.");
     return false;
+  }
+  std::string problem = points_problem(input);
+  if (problem.empty())
+  {
+    problem = point_array_problem(input, xi, selected_array_name(this, 0), 1);
+  }
+  if (problem.empty())
+  {
+    problem = extent_problem(positions_of(input), frame.spacing);
+  }
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return false;
+  }
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro("The input has no points: no bands.");
   }
 
   BandParameters parameters;
