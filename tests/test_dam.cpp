@@ -183,6 +183,18 @@ std::string read_text(const fs::path& p) {
   return ss.str();
 }
 
+TEST(Dam, ElasticBodyIsRefused) {
+  Scene s = with_elements(layer_scene(10.0, 1.0, 5.0, 1700.0, 1e3), 10);
+  s.materials[0].model = MaterialModel::Elastic;
+  try {
+    DamSolver dam(s);
+    FAIL() << "an elastic body was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs model = \"tresca\""), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(DamCli, EscarpmentWritesHistoryAndPvd) {
   const fs::path dir = fs::temp_directory_path() / "runout_dam_cli";
   fs::remove_all(dir);

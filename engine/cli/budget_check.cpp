@@ -96,12 +96,7 @@ int budget_check(const Scene& scene, double budget) {
   Scene dam = mpm;
   dam.method = Method::Dam;
   dam.dam.elements = 0;  // elements = length / cell, so that they scale with h
-  // The depth-averaged model is a flowing layer resisted by the strength
-  // law; it accepts an elastic body but has nothing to model it with.
-  const bool elastic = std::any_of(scene.materials.begin(), scene.materials.end(),
-                                   [](const MaterialSpec& m) { return m.model != MaterialModel::Tresca; });
   try {
-    if (elastic) throw SceneError("an elastic body does not flow as a depth-averaged layer", 0);
     DamSolver solver(dam);
     dam_cal = calibrate(solver, solver.elements(), cell, scene.time.end, 1);
     print_calibration("dam", "elements", *dam_cal);

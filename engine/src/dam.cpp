@@ -31,7 +31,6 @@ BasalLaw basal_law(const Scene& scene, const MaterialSpec& m) {
   law.interface = scene.base.interface;
   law.tau = scene.base.shear_strength;
   law.mu = scene.base.friction;
-  law.has_strength = m.model == MaterialModel::Tresca;
   law.strength = strength_params(m);
   return law;
 }
@@ -52,7 +51,7 @@ double shear_rate(const DamSpec& o, double speed, double h, double tau_y, double
 }  // namespace
 
 double BasalLaw::resistance(double xi, double gamma_dot, double normal_stress) const {
-  const double su = has_strength ? runout::strength(strength, xi, gamma_dot) : kInfinity;
+  const double su = runout::strength(strength, xi, gamma_dot);
   switch (interface) {
     case InterfaceKind::Frictional: return std::min(tau, su);
     case InterfaceKind::Coulomb: return std::min(mu * normal_stress, su);
@@ -96,6 +95,13 @@ DamSolver::DamSolver(const Scene& scene)
   require_memory(scene, Method::Dam);
   const BodySpec& body = scene.bodies.front();
   const MaterialSpec& material = scene.materials[body.material];
+  // The layer's only resistance is the strength law at its base (docs/dam.md):
+  // an elastic body would spread like a fluid, which answers nothing.
+  if (material.model != MaterialModel::Tresca)
+    throw SceneError("material " + material.name +
+                         ": the depth-averaged method needs model = \"tresca\" (an elastic body "
+                         "has no strength to resist spreading)",
+                     0);
   density_ = material.density;
   law_ = basal_law(scene, material);
 

@@ -35,7 +35,6 @@ struct BasalLaw {
   InterfaceKind interface = InterfaceKind::NoSlip;
   double tau = 0;           // Frictional
   double mu = 0;            // Coulomb
-  bool has_strength = false;  // false: an elastic material, which never fails
   StrengthParams strength;
 
   double resistance(double xi, double gamma_dot, double normal_stress) const;
