@@ -219,3 +219,13 @@ TEST_F(CheckpointCli, DepthAveragedRunRefusesCheckpoints) {
   EXPECT_EQ(r.code, 64) << r.output;
   EXPECT_NE(r.output.find("writes no checkpoints"), std::string::npos) << r.output;
 }
+
+// A new run in the folder of an earlier one removes its checkpoint with its
+// frames: resume could otherwise bring back the earlier run.
+TEST_F(CheckpointCli, AFreshRunRemovesAnEarlierCheckpoint) {
+  const fs::path out = run("out", "--checkpoint-every 0.1");
+  ASSERT_TRUE(fs::exists(out / "checkpoint.bin"));
+  run("out");
+  EXPECT_FALSE(fs::exists(out / "checkpoint.bin"));
+  EXPECT_EQ(run_cli("resume " + out.string()).code, 66);
+}
