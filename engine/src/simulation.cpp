@@ -51,7 +51,7 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
 
 std::vector<MaterialParams> make_materials(const Scene& s) {
   std::vector<MaterialParams> out;
-  for (const auto& m : s.materials) out.push_back(material_params(m));
+  for (const auto& m : s.materials) out.push_back(material_params(m, s.grid.cell_size));
   return out;
 }
 
