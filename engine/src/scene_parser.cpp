@@ -328,6 +328,13 @@ GridSpec read_grid(TableReader r) {
   if (auto v = r.find("ppc")) grid.ppc = v->integer(kPpcRange);
   if ((grid.max.array() <= grid.min.array()).any())
     max.fail("must be greater than grid.min in both x and y");
+  // Node indices along an axis are ints (and beyond that the extent itself
+  // may overflow a double).
+  const Eigen::Array2d cells = (grid.max - grid.min).array() / grid.cell_size;
+  if (!(cells <= std::numeric_limits<int>::max()).all())
+    max.fail("the domain is " + format_number(cells.maxCoeff()) +
+             " cells of grid.cell_size across, more than the " +
+             std::to_string(std::numeric_limits<int>::max()) + " a grid can index");
   snap_max_to_node(grid);
   return grid;
 }
