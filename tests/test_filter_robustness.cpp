@@ -160,6 +160,11 @@ const std::vector<Spoilt>& spoilt_frames() {
        {Strain, Bands, Blocks, Morphology}, "Point 3"},
       {"points beyond any slide", [](vtkUnstructuredGrid* g) { set_point(g, 0, 1e300, 0.0); },
        {Strain, Bands, Blocks, Morphology}, ""},
+      // The slow input fuzz_vtu found: an initial position 8e6 m away made
+      // 8e6 profile bins (10 s and 1.4 GB for 32 particles).
+      {"a stray initial position 8000 km away",
+       [](vtkUnstructuredGrid* g) { point_array(g, "initial_position")->SetComponent(4, 0, 8e6); },
+       {Morphology}, "more than 10^6 profile bins"},
       {"NaN strain",
        [](vtkUnstructuredGrid* g) { point_array(g, "plastic_shear_strain")->SetComponent(5, 0, kNaN); },
        {Strain, Bands, Blocks}, "\"plastic_shear_strain\" has a value that is not a finite number"},

@@ -12,6 +12,7 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -126,13 +127,38 @@ const std::vector<Column<int>>& count_columns() {
   return columns;
 }
 
+// Profile bins a frame may need: far beyond any slide (a 10 km runout in
+// 0.5 m bins is 2e4), well short of exhausting memory (48 B each), which a
+// single stray point far from the slide would otherwise do.
+constexpr double kMaxProfileBins = 1e6;
+
+double span(const std::vector<double>& x, const std::vector<double>& y) {
+  const auto [x_lo, x_hi] = std::minmax_element(x.begin(), x.end());
+  const auto [y_lo, y_hi] = std::minmax_element(y.begin(), y.end());
+  return std::hypot(*x_hi - *x_lo, *y_hi - *y_lo);
+}
+
+// The profile bins of width `width` run along the base over the points,
+// now and (for the initial morphology) at their initial positions: "" or
+// why there would be too many.
+std::string bins_problem(const runout::Particles& p, double width) {
+  const double widest = std::max(span(p.x, p.y), span(p.x0, p.y0));
+  if (widest / width <= kMaxProfileBins) return "";
+  return "The points (or their initial positions) span " + std::to_string(widest) +
+         " m, more than 10^6 profile bins of " + std::to_string(width) +
+         " m: a stray point? (BinSpacings sets the bins.)";
+}
+
 }  // namespace
 
 std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out) {
   out = FrameMorphology();
   if (frame->GetNumberOfPoints() == 0) return "";
   ParticleFrame particles;
-  const std::string error = read_particle_frame(frame, particles);
+  std::string error = read_particle_frame(frame, particles);
+  if (error.empty())
+    error = bins_problem(particles.particles,
+                         std::min(bin_spacings, runout::kMainBodyBinSpacings) * particles.spacing);
   if (!error.empty()) return error;
   out = measure_frame(particles.particles, particles.base->view(), particles.spacing,
                       bin_spacings * particles.spacing);
