@@ -31,13 +31,28 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// One scene of the study: the domain's far end and the slope angle
+// (--domain-x-max, --slope-angle), and the study's copy of it that the
+// children read.
+struct Variant {
+  Scene scene;
+  std::string file;
+  double domain_x_max = 0;
+  std::optional<double> slope_angle;  // empty: the scene's own gravity
+  std::optional<study::RigidBlock> block;  // --reference analytic-block: on this slope
+
+  // The runs of one variant are measured against each other.
+  bool same_place(const Variant& o) const {
+    return domain_x_max == o.domain_x_max && slope_angle == o.slope_angle;
+  }
+};
+
 // One combination of the matrix.
 struct RunSpec {
   std::string id, method, backend, shape;  // shape empty for the depth-averaged model
   double cell = 0;
   int ppc = 0;                             // 0 for the depth-averaged model
-  std::string scene_file;                  // the study's copy of the scene, per domain
-  double domain_x_max = 0;
+  const Variant* variant = nullptr;
   std::string skip;                        // why it is not run; empty: it runs
 };
 
@@ -58,43 +73,62 @@ std::string format(double v, const char* fmt = "%.6g") {
   return buf;
 }
 
-std::string run_id(const RunSpec& r, bool several_domains) {
+// What tells a variant's runs and files apart: "_x<far end>" when the
+// study has several domains, "_a<angle>" when it sets the slope.
+std::string variant_suffix(const StudyArgs& a, const Variant& v) {
+  std::string suffix;
+  if (a.domain_x_max.size() > 1) suffix += "_x" + format(v.domain_x_max);
+  if (v.slope_angle) suffix += "_a" + format(*v.slope_angle);
+  return suffix;
+}
+
+std::string run_id(const RunSpec& r, const std::string& suffix) {
   std::string id = r.method + "_" + r.backend;
   if (!r.shape.empty()) id += "_" + r.shape;
   id += "_h" + format(r.cell);
   if (r.ppc > 0) id += "_ppc" + std::to_string(r.ppc);
-  if (several_domains) id += "_x" + format(r.domain_x_max);
-  return id;
+  return id + suffix;
 }
 
-// The scene as the study runs it (--end applied, the domain's far end
-// moved), written beside the runs so that every child reads the same file.
-std::vector<std::pair<std::string, double>> write_scenes(const StudyArgs& a, const Scene& base,
-                                                         const fs::path& dir) {
-  std::vector<std::pair<std::string, double>> files;
+// The scene as the study runs it (--end applied), once per far end of the
+// domain and slope angle, with its rigid block when that is the reference.
+// Throws SceneError for a slope or a reference the scene cannot take,
+// before anything is written.
+std::vector<Variant> variants(const StudyArgs& a, const Scene& base) {
   std::vector<double> ends = a.domain_x_max;
   if (ends.empty()) ends.push_back(base.grid.max.x());
-  for (double x : ends) {
-    Scene s = base;
-    s.grid.max.x() = x;
-    const std::string name = a.domain_x_max.empty() ? "scene.toml" : "scene_x" + format(x) + ".toml";
-    const std::string path = (dir / name).string();
-    write_file_atomically(path, to_toml(s));
-    files.emplace_back(path, x);
-  }
-  return files;
+  std::vector<std::optional<double>> angles(a.slope_angles.begin(), a.slope_angles.end());
+  if (angles.empty()) angles.emplace_back();
+  std::vector<Variant> out;
+  for (double x : ends)
+    for (const std::optional<double>& angle : angles) {
+      Variant v{base, "", x, angle};
+      v.scene.grid.max.x() = x;
+      if (angle) study::set_slope_angle(v.scene, *angle);
+      if (a.reference == "analytic-block") v.block = study::rigid_block(v.scene);
+      out.push_back(std::move(v));
+    }
+  return out;
 }
 
-std::vector<RunSpec> expand_matrix(const StudyArgs& a,
-                                   const std::vector<std::pair<std::string, double>>& scenes) {
+// Each variant's scene written beside the runs, so that every child reads
+// the same file.
+void write_scenes(const StudyArgs& a, std::vector<Variant>& variants, const fs::path& dir) {
+  for (Variant& v : variants) {
+    v.file = (dir / ("scene" + variant_suffix(a, v) + ".toml")).string();
+    write_file_atomically(v.file, to_toml(v.scene));
+  }
+}
+
+std::vector<RunSpec> expand_matrix(const StudyArgs& a, const std::vector<Variant>& variants) {
   std::string no_cuda;
   const bool cuda = !cuda_devices(no_cuda).empty();
   std::vector<RunSpec> runs;
-  for (const auto& [file, x_max] : scenes)
+  for (const Variant& v : variants)
     for (const std::string& method : a.methods)
       for (const std::string& backend : a.backends)
         for (double cell : a.cells) {
-          RunSpec r{"", method, backend, "", cell, 0, file, x_max, ""};
+          RunSpec r{"", method, backend, "", cell, 0, &v, ""};
           if (method == "dam") {  // no shape functions, no particles: one run per cell size
             if (backend == "cuda") r.skip = "the depth-averaged model runs on the CPU only";
             runs.push_back(r);
@@ -108,12 +142,12 @@ std::vector<RunSpec> expand_matrix(const StudyArgs& a,
               runs.push_back(r);
             }
         }
-  for (RunSpec& r : runs) r.id = run_id(r, scenes.size() > 1);
+  for (RunSpec& r : runs) r.id = run_id(r, variant_suffix(a, *r.variant));
   return runs;
 }
 
 std::vector<std::string> child_args(const RunSpec& r, const fs::path& run_dir, int threads) {
-  std::vector<std::string> v{"runout", "run", r.scene_file, "--method", r.method,
+  std::vector<std::string> v{"runout", "run", r.variant->file, "--method", r.method,
                              "--backend", r.backend, "--cell", format(r.cell, "%.17g"),
                              "--out", run_dir.string(), "--quiet",
                              "--threads", std::to_string(threads)};
@@ -223,8 +257,8 @@ std::vector<RunResult> run_all(const std::vector<RunSpec>& runs, const StudyArgs
   return results;
 }
 
-// The finest successful MPM run to measure row k against: same domain,
-// the same shape where there is one, the CPU before CUDA, then the
+// The finest successful MPM run to measure row k against: same domain and
+// slope, the same shape where there is one, the CPU before CUDA, then the
 // smallest cell and the most particles per cell. -1 when there is none.
 int finest_reference(const std::vector<RunSpec>& runs, const std::vector<RunResult>& res,
                      std::size_t k) {
@@ -236,7 +270,7 @@ int finest_reference(const std::vector<RunSpec>& runs, const std::vector<RunResu
   };
   for (std::size_t j = 0; j < runs.size(); ++j) {
     if (runs[j].method != "mpm" || !res[j].measured || res[j].status != "ok") continue;
-    if (runs[j].domain_x_max != runs[k].domain_x_max) continue;
+    if (!runs[j].variant->same_place(*runs[k].variant)) continue;
     if (best < 0 || key(j) < key(best)) best = static_cast<int>(j);
   }
   return best;
@@ -244,7 +278,7 @@ int finest_reference(const std::vector<RunSpec>& runs, const std::vector<RunResu
 
 std::string csv_header(const std::vector<double>& times) {
   std::string h =
-      "id,method,backend,shape,cell,ppc,domain_x_max,status,note,particles,steps,end_time,"
+      "id,method,backend,shape,cell,ppc,domain_x_max,slope_angle,status,note,particles,steps,end_time,"
       "wall_s,particle_steps_per_s,peak_memory_mib";
   const auto metric_names = [&](const std::string& prefix) {
     for (double t : times) h += "," + prefix + "runout_t" + format(t);
@@ -268,8 +302,8 @@ std::string csv_row(const RunSpec& s, const RunResult& r, const std::vector<doub
   std::ostringstream o;
   const double rate = r.particles * double(r.steps) / r.wall;
   o << s.id << ',' << s.method << ',' << s.backend << ',' << s.shape << ',' << format(s.cell)
-    << ',' << (s.ppc > 0 ? std::to_string(s.ppc) : "") << ',' << format(s.domain_x_max) << ','
-    << r.status << ',' << csv_text(r.note) << ',' << (r.particles ? std::to_string(r.particles) : "")
+    << ',' << (s.ppc > 0 ? std::to_string(s.ppc) : "") << ',' << format(s.variant->domain_x_max)
+    << ',' << (s.variant->slope_angle ? format(*s.variant->slope_angle) : "") << ',' << r.status << ',' << csv_text(r.note) << ',' << (r.particles ? std::to_string(r.particles) : "")
     << ',' << (r.steps ? std::to_string(r.steps) : "") << ',' << format(r.end_time) << ','
     << format(r.wall, "%.4g") << ',' << (r.steps ? format(rate, "%.4g") : "") << ','
     << format(r.peak_mib, "%.4g");
@@ -304,6 +338,9 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
   cmd->add_option("--domain-x-max", a.domain_x_max,
                   "Far ends of the domain along x [m]: the same slide on longer paths")
       ->delimiter(',');
+  cmd->add_option("--slope-angle", a.slope_angles,
+                  "Slope angles [deg] of a planar-slope scene: the same slide on steeper bases")
+      ->delimiter(',');
   cmd->add_option("--times", a.times, "Report the toe runout at these times [s]")
       ->delimiter(',')->check(CLI::NonNegativeNumber);
   cmd->add_option("--end", a.end, "Override the end time [s]");
@@ -320,17 +357,17 @@ int run_study(const StudyArgs& a) {
   Scene scene = a.scene.empty() ? parse_scene(default_scene_toml(), "default.toml")
                                 : load_scene_file(a.scene);
   apply_overrides(scene, std::nullopt, std::nullopt, a.end);
-  std::optional<study::RigidBlock> block;
-  if (a.reference == "analytic-block") block = study::rigid_block(scene);
 
   const fs::path dir = a.out.empty() ? fs::path("out/study") / scene.name : fs::path(a.out);
   const int cores = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = a.jobs > 0 ? a.jobs : std::max(1, cores / a.threads);
+  std::vector<Variant> scenes = variants(a, scene);
   std::vector<RunSpec> runs;
   std::vector<RunResult> results;
   try {
     fs::create_directories(dir / "runs");
-    runs = expand_matrix(a, write_scenes(a, scene, dir));
+    write_scenes(a, scenes, dir);
+    runs = expand_matrix(a, scenes);
     std::fprintf(stderr, "runout study: %zu runs, %d at a time, %d thread(s) each, into %s\n",
                  runs.size(), jobs, a.threads, dir.c_str());
     results = run_all(runs, a, dir / "runs", jobs);
@@ -348,7 +385,7 @@ int run_study(const StudyArgs& a) {
   std::vector<std::string> reference(n);
   for (std::size_t k = 0; k < n; ++k) {
     if (!results[k].measured) continue;
-    if (block) {
+    if (const std::optional<study::RigidBlock>& block = runs[k].variant->block) {
       reference[k] = "analytic-block";
       errors[k] = study::metric_errors(
           results[k].metrics, study::rigid_block_metrics(*block, a.times, results[k].end_time));
@@ -368,7 +405,7 @@ int run_study(const StudyArgs& a) {
   std::vector<double> order(n, kNaN);
   const auto series = [&](std::size_t k) {
     return std::make_tuple(runs[k].method, runs[k].backend, runs[k].shape, runs[k].ppc,
-                           runs[k].domain_x_max);
+                           runs[k].variant->domain_x_max, runs[k].variant->slope_angle);
   };
   for (std::size_t k = 0; k < n; ++k) {
     std::vector<double> h, e;

@@ -1,7 +1,7 @@
 #pragma once
 // `runout study`: runs a matrix of `runout run` child processes (one per
-// combination of method, backend, shape, cell size, particles per cell and
-// domain length), in parallel where cores allow, and writes one CSV row per
+// combination of method, backend, shape, cell size, particles per cell,
+// domain length and slope angle), in parallel where cores allow, and writes one CSV row per
 // combination with its cost and its accuracy against a reference
 // (docs/study.md).
 #include <CLI/CLI.hpp>
@@ -17,6 +17,7 @@ struct StudyArgs {
   std::vector<int> ppc{2};
   std::vector<std::string> shapes{"gimp"}, methods{"mpm"}, backends{"cpu"};
   std::vector<double> domain_x_max;  // empty: the scene's own domain
+  std::vector<double> slope_angles;  // [deg]; empty: the scene's own gravity
   std::vector<double> times;         // toe runout reported at these times [s]
   std::optional<double> end;
   std::string reference = "finest";  // or "analytic-block"

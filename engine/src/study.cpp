@@ -12,6 +12,7 @@
 
 #include "runout/polygon.hpp"
 #include "runout/scene_parser.hpp"
+#include "scene_text.hpp"
 
 namespace runout::study {
 namespace {
@@ -155,6 +156,20 @@ Metrics rigid_block_metrics(const RigidBlock& b, const std::vector<double>& time
   m.peak_toe_velocity = b.velocity0 + b.acceleration * end_time;  // a >= 0: largest at the end
   m.final_length = b.length;
   return m;
+}
+
+void set_slope_angle(Scene& s, double angle_deg) {
+  if (s.base.kind == BaseKind::Polyline)
+    throw SceneError("--slope-angle: the scene's [base] is a polyline: its points are the "
+                     "bathymetry and so the slope; a slope angle applies to a planar base",
+                     0);
+  if (!(angle_deg > -90.0 && angle_deg < 90.0))
+    throw SceneError("--slope-angle: must be in (-90, 90) degrees (got " +
+                         scene_text::format_number(angle_deg) + ")",
+                     0);
+  s.gravity.slope_angle_deg = angle_deg;
+  s.gravity.vector = scene_text::slope_gravity(s.gravity.vector.norm(), angle_deg);
+  s.overrides.push_back("gravity.slope_angle = " + scene_text::format_number(angle_deg));
 }
 
 double observed_order(const std::vector<double>& cell, const std::vector<double>& error) {

@@ -65,6 +65,13 @@ RigidBlock rigid_block(const Scene& scene);
 Metrics rigid_block_metrics(const RigidBlock& block, const std::vector<double>& times,
                             double end_time);
 
+// The scene on a planar slope of angle_deg (the run is in the slope frame,
+// so gravity becomes |g| (sin, -cos) of the angle, its magnitude kept),
+// recorded in scene.overrides. Throws SceneError for a polyline [base],
+// whose points are the bathymetry and so the slope, or an angle outside
+// (-90, 90) degrees.
+void set_slope_angle(Scene& scene, double angle_deg);
+
 // The exponent p of error = C h^p, fitted by least squares to
 // (log h, log error); NaN with fewer than two usable points (finite,
 // positive error and h, at least two distinct h).
