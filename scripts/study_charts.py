@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Charts of a `runout study` folder (docs/study.md), rendered headless.
 
-    study_charts.py STUDY_DIR OUT_PREFIX [--title TEXT]
+    study_charts.py STUDY_DIR OUT_PREFIX [--title TEXT] [--slopes]
 
 writes OUT_PREFIX_error_vs_wall.png (one point per run, the Pareto front the
 study marked joined), OUT_PREFIX_convergence.png (error against cell size per
 series, with the observed order the study fitted) and OUT_PREFIX_runout.png
-(the toe runout history of every run). The functions take the rows of
-read_study() so other charts can reuse them.
+(the toe runout history of every run). With --slopes (a study over
+--slope-angle) it writes OUT_PREFIX.png instead: the MPM and the
+depth-averaged model against the slope angle, and prints their table. The
+functions take the rows of read_study() so other charts can reuse them.
 """
 import argparse
 import csv
@@ -64,16 +66,25 @@ def usable(row, metric=ERROR):
     return row["status"] == "ok" and row[metric] > 0 and math.isfinite(row[metric])
 
 
-def save(fig, ax, path, xlabel, ylabel, title):
-    """Labels, grid and legend of a chart, written to path."""
+def label(ax, xlabel, ylabel, title):
+    """Labels, grid and legend of one panel."""
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
+
+
+def write(fig, path):
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def save(fig, ax, path, xlabel, ylabel, title):
+    """A one-panel chart, labelled, written to path."""
+    label(ax, xlabel, ylabel, title)
+    write(fig, path)
 
 
 def error_label(metric):
@@ -115,11 +126,16 @@ def chart_convergence(rows, path, title="", metric=ERROR):
     save(fig, ax, path, "cell size h [m]", error_label(metric), title or "Convergence")
 
 
-def read_history(path):
-    """time and runout columns of a run's history.csv."""
+def read_columns(path, names):
+    """The named columns of a run's history.csv, as lists of floats."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
-    return [float(r["time"]) for r in rows], [float(r["runout"]) for r in rows]
+    return [[float(r[name]) for r in rows] for name in names]
+
+
+def read_history(path):
+    """time and runout columns of a run's history.csv."""
+    return tuple(read_columns(path, ("time", "runout")))
 
 
 def chart_runout_history(study_dir, rows, path, title="", analytic=None):
@@ -136,6 +152,106 @@ def chart_runout_history(study_dir, rows, path, title="", analytic=None):
     save(fig, ax, path, "time [s]", "toe runout [m]", title or "Runout history")
 
 
+# The DAM against the MPM over slope angles: what is compared, and the
+# relative difference beyond which the two are said to disagree.
+SLOPE_METRICS = (("runout_end", "toe runout"), ("centroid_travel", "centroid travel"),
+                 ("final_length", "length"), ("max_thickness_end", "max thickness"))
+DISAGREE = 0.2
+
+
+def finest_by_angle(study_dir, rows, method):
+    """{slope angle: the method's finest finished run there}, each with the
+    max_thickness at its end and the travel of its centroid along the base
+    read from its history.csv."""
+    runs = {}
+    for r in rows:
+        if r["method"] == method and r["status"] == "ok":
+            runs.setdefault(r["slope_angle"], []).append(r)
+    # Smallest cell, then most particles per cell (the DAM has none: NaN).
+    finest = lambda r: (r["cell"], -r["ppc"] if math.isfinite(r["ppc"]) else 0)  # noqa: E731
+    best = {angle: min(rs, key=finest) for angle, rs in runs.items()}
+    for r in best.values():
+        thickness, centroid = read_columns(
+            os.path.join(study_dir, "runs", r["id"], "history.csv"), ("max_thickness", "centroid_s"))
+        r["max_thickness_end"] = thickness[-1]
+        r["centroid_travel"] = centroid[-1] - centroid[0]
+    return best
+
+
+def disagreement_spans(angles, diffs, limit=DISAGREE):
+    """The angle ranges where |diff| > limit, ends interpolated linearly
+    between the measured angles (the first and last measured angle bound it)."""
+    spans, start = [], None
+    for k, (a, d) in enumerate(zip(angles, diffs)):
+        over = abs(d) > limit
+        if over and start is None:
+            start = a if k == 0 else crossing(angles[k - 1], diffs[k - 1], a, d, limit)
+        if not over and start is not None:
+            spans.append((start, crossing(angles[k - 1], diffs[k - 1], a, d, limit)))
+            start = None
+    if start is not None:
+        spans.append((start, angles[-1]))
+    return spans
+
+
+def crossing(a0, d0, a1, d1, limit):
+    """The angle between a0 and a1 where |diff| passes limit, linearly."""
+    e0, e1 = abs(d0) - limit, abs(d1) - limit
+    return a0 + (a1 - a0) * e0 / (e0 - e1)
+
+
+def chart_dam_vs_mpm(study_dir, rows, path, title=""):
+    """Runout, length and max thickness at the end against the slope angle
+    for the MPM and the DAM (finest run of each per angle), and their
+    relative difference (DAM - MPM) / MPM, the angles where the runouts
+    differ by more than DISAGREE shaded. Returns the table's rows."""
+    mpm, dam = finest_by_angle(study_dir, rows, "mpm"), finest_by_angle(study_dir, rows, "dam")
+    angles = sorted(set(mpm) & set(dam))
+    keys = [metric for metric, _ in SLOPE_METRICS]
+    fig, axes = plt.subplot_mosaic([keys[0:2], keys[2:4], ["diff", "diff"]], figsize=(10, 10),
+                                   sharex=True)
+    table = []
+    for a in angles:
+        diffs = [(dam[a][m] - mpm[a][m]) / mpm[a][m] for m, _ in SLOPE_METRICS]
+        table.append((a, mpm[a], dam[a], diffs))
+    for metric, name in SLOPE_METRICS:
+        ax = axes[metric]
+        for method, runs in (("MPM", mpm), ("DAM", dam)):
+            ax.plot(angles, [runs[a][metric] for a in angles], "o-", label=method)
+        if metric in ("runout_end", "centroid_travel", "final_length"):
+            ax.set_yscale("log")
+        label(ax, "", name + " [m]", name + " at the end")
+    ax = axes["diff"]
+    for k, (_, name) in enumerate(SLOPE_METRICS):
+        ax.plot(angles, [100 * t[3][k] for t in table], "o-", label=name)
+    runout_diffs = [t[3][0] for t in table]
+    for n, (lo, hi) in enumerate(disagreement_spans(angles, runout_diffs)):
+        ax.axvspan(lo, hi, color="tab:red", alpha=0.12,
+                   label="runouts differ > %d %%" % (100 * DISAGREE) if n == 0 else None)
+    for y in (-100 * DISAGREE, 100 * DISAGREE):
+        ax.axhline(y, color="k", ls=":", lw=1)
+    ax.set_yscale("symlog", linthresh=100 * DISAGREE)
+    label(ax, "slope angle [deg]", "(DAM - MPM) / MPM [%]", "relative difference")
+    fig.suptitle(title or "DAM against MPM over slope angles")
+    write(fig, path)
+    return table
+
+
+def print_slope_table(table):
+    """The table of chart_dam_vs_mpm as Markdown."""
+    print("| slope [deg] | " + " | ".join("MPM %s [m] | DAM %s [m] | difference" % (n, n)
+                                          for _, n in SLOPE_METRICS)
+          + " | MPM end [s] | DAM end [s] | MPM wall [s] | DAM wall [s] |")
+    print("|" + " --- |" * (1 + 3 * len(SLOPE_METRICS) + 4))
+    for a, m, d, diffs in table:
+        cells = ["%g" % a]
+        for (metric, _), diff in zip(SLOPE_METRICS, diffs):
+            cells += ["%.3g" % m[metric], "%.3g" % d[metric], "%+.0f %%" % (100 * diff)]
+        cells += ["%.3g" % m["end_time"], "%.3g" % d["end_time"], "%.3g" % m["wall_s"],
+                  "%.2g" % d["wall_s"]]
+        print("| " + " | ".join(cells) + " |")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("study_dir")
@@ -143,8 +259,14 @@ def main():
     parser.add_argument("--title", default="")
     parser.add_argument("--block-acceleration", type=float,
                         help="draw the rigid block's s = a t^2 / 2 on the runout chart")
+    parser.add_argument("--slopes", action="store_true",
+                        help="a study over --slope-angle: the DAM against the MPM, OUT_PREFIX.png")
     args = parser.parse_args()
     rows = read_study(args.study_dir)
+    if args.slopes:
+        print_slope_table(chart_dam_vs_mpm(args.study_dir, rows, args.out_prefix + ".png",
+                                           args.title))
+        return
     domains = {r["domain_x_max"] for r in rows}
     for r in rows:
         r["_many_domains"] = len(domains) > 1
