@@ -49,6 +49,12 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
   return c;
 }
 
+std::vector<double> nonlocal_lengths(const Scene& s) {
+  std::vector<double> out;
+  for (const auto& m : s.materials) out.push_back(m.nonlocal_length);
+  return out;
+}
+
 std::vector<MaterialParams> make_materials(const Scene& s) {
   std::vector<MaterialParams> out;
   for (const auto& m : s.materials) out.push_back(material_params(m, s.grid.cell_size));
@@ -63,6 +69,7 @@ Simulation::Simulation(const Scene& scene, Particles particles)
     : particles_(std::move(particles)),
       base_(scene.base, scene.grid.min.y()),
       materials_(make_materials(scene)),
+      nonlocal_(nonlocal_lengths(scene)),
       domain_min_(scene.grid.min),
       domain_max_(scene.grid.max),
       h_(scene.grid.cell_size),
@@ -214,6 +221,26 @@ void Simulation::smooth_mean_stress() {
   }
 }
 
+// The return mapping has put each particle on the yield surface of its own
+// increment; the nonlocal one takes over from the next step, where the
+// strength is evaluated at the regularised xi (the explicit scheme of
+// Galavi & Schweiger 2010: local return, nonlocal internal variable). The
+// increments are measured at the particles' end-of-step positions.
+void Simulation::regularise_softening() {
+  const ParticleView P = particles_.view();
+  dxi_local_.resize(P.n);
+  dxi_average_.resize(P.n);
+#pragma omp parallel for if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) dxi_local_[p] = P.xi[p] - xi_start_[p];
+  nonlocal_.apply({P.n, P.x, P.y, P.vol, P.material}, dxi_local_.data(), dxi_average_.data());
+#pragma omp parallel for if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) {
+    if (nonlocal_.length(P.material[p]) <= 0.0) continue;
+    P.xi[p] = xi_start_[p] + dxi_average_[p];
+    P.su[p] = strength(materials_[P.material[p]].strength, P.xi[p], P.gamma_dot[p]);
+  }
+}
+
 void Simulation::step(double dt) {
   fit_grid(dt);
   bin_particles();
@@ -249,6 +276,7 @@ void Simulation::step(double dt) {
 #pragma omp parallel for if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) L[p] = velocity_gradient(st[p], g);
   if (smooth_volumetric_) smooth_volumetric_rates();
+  if (nonlocal_.active()) xi_start_.assign(P.xi, P.xi + P.n);
 
   double smax = 0;
   int bad = 0;
@@ -260,6 +288,7 @@ void Simulation::step(double dt) {
     bad += particle_fault(P, p, limits) != Fault::None;
   }
   if (bad > 0) throw NumericalFailure(describe_faults(particles_, limits_, steps_, time_, dt));
+  if (nonlocal_.active()) regularise_softening();
   if (smooth_volumetric_) smooth_mean_stress();
   max_signal_speed_ = smax;
   basal_shear_force_ = basal;

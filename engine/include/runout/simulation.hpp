@@ -12,6 +12,7 @@
 #include "runout/grid.hpp"
 #include "runout/guards.hpp"
 #include "runout/material.hpp"
+#include "runout/nonlocal.hpp"
 #include "runout/particles.hpp"
 #include "runout/scene.hpp"
 #include "runout/stages.hpp"
@@ -84,6 +85,9 @@ class Simulation {
   void cell_means(Value&& value);
   void smooth_volumetric_rates();
   void smooth_mean_stress();
+  // Replaces the step's increment of xi by its nonlocal average
+  // (nonlocal.hpp) and sets su to match, for materials with a length.
+  void regularise_softening();
 
   Particles particles_;
   Base base_;
@@ -95,6 +99,8 @@ class Simulation {
   std::vector<Stencil2D> stencils_;
   std::vector<VelocityGradient> gradients_;
   std::vector<double> cell_volume_, cell_mean_;  // per cell of the grid box
+  NonlocalAverage nonlocal_;
+  std::vector<double> xi_start_, dxi_local_, dxi_average_;  // per particle, nonlocal runs
   // Particles grouped by block of kBlock x kBlock cells (counting sort).
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, scratch_next_;
   int blocks_x_ = 0, blocks_y_ = 0;
