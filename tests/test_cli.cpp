@@ -93,6 +93,25 @@ TEST_F(Cli, RunWritesFramesIndexHistoryAndResolvedScene) {
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left";
 }
 
+// Only the CPU driver averages nonlocally: the cuda backend refuses such a
+// scene with 69 whether or not a device is there, naming the key; on the
+// CPU the scene runs.
+TEST_F(Cli, NonlocalSofteningRunsOnTheCpuOnly) {
+  std::string text = kSmallScene;
+  const std::string elastic = "poisson_ratio = 0.3\n";
+  text.replace(text.find(elastic), elastic.size(),
+               elastic + "model = \"tresca\"\nsu0 = 5000.0\nnonlocal_length = 1.0\n");
+  const std::string scene = write("small.toml", text);
+  const fs::path out = dir_ / "out";
+  const Result cuda = run_cli("run " + scene + " --backend cuda -q --out " + out.string());
+  EXPECT_EQ(cuda.code, 69) << cuda.output;
+  EXPECT_NE(cuda.output.find("nonlocal_length"), std::string::npos) << cuda.output;
+  EXPECT_NE(cuda.output.find("--backend cpu"), std::string::npos) << cuda.output;
+  EXPECT_FALSE(fs::exists(out));
+  const Result cpu = run_cli("run " + scene + " -q --out " + out.string());
+  EXPECT_EQ(cpu.code, 0) << cpu.output;
+}
+
 TEST_F(Cli, BackendIsCheckedBeforeAnyOutput) {
   const std::string scene = write("small.toml", kSmallScene);
   EXPECT_EQ(run_cli("run " + scene + " --backend gpu").code, 64);

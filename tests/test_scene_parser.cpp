@@ -164,7 +164,7 @@ TEST(SceneParser, TrescaMaterialTakesDefaults) {
   EXPECT_EQ(m.rate_exponent, 0.1);
   EXPECT_EQ(m.reference_rate, 1.0);
   EXPECT_EQ(m.strength_form, StrengthForm::Multiplicative);
-  EXPECT_EQ(m.xi95_reference_cell, 0.0);  // mesh adjustment off
+  EXPECT_EQ(m.nonlocal_length, 0.0);  // local softening
   EXPECT_EQ(m.youngs_modulus, 1.0e5);
 }
 
@@ -173,10 +173,10 @@ TEST(SceneParser, TrescaMaterialEveryKey) {
       replace_lines(18, 18, std::string(kTrescaClay) +
                                 "\nsensitivity = 40\nxi95 = 45\neta = 0.0167\n"
                                 "rate_exponent = 0.5\nreference_rate = 0.01\n"
-                                "strength_form = \"additive\"\nxi95_reference_cell = 0.1"),
+                                "strength_form = \"additive\"\nnonlocal_length = 1.5"),
       "tresca.toml");
   const MaterialSpec& m = s.materials[0];
-  EXPECT_EQ(m.xi95_reference_cell, 0.1);
+  EXPECT_EQ(m.nonlocal_length, 1.5);
   EXPECT_EQ(m.sensitivity, 40.0);
   EXPECT_EQ(m.xi95, 45.0);
   EXPECT_EQ(m.eta, 0.0167);
@@ -359,9 +359,11 @@ INSTANTIATE_TEST_SUITE_P(
                   14, "material[0].xi95", "missing required key"},
         ErrorCase{"Xi95Zero", 18, 18, std::string(kTrescaClay) + "\nxi95 = 0", 21,
                   "material[0].xi95", "must be > 0 (got 0)"},
-        ErrorCase{"Xi95ReferenceCellZero", 18, 18,
-                  std::string(kTrescaClay) + "\nxi95_reference_cell = 0", 21,
-                  "material[0].xi95_reference_cell", "must be > 0 (got 0)"},
+        ErrorCase{"NonlocalLengthZero", 18, 18,
+                  std::string(kTrescaClay) + "\nnonlocal_length = 0", 21,
+                  "material[0].nonlocal_length", "must be > 0 (got 0)"},
+        ErrorCase{"NonlocalLengthOnElastic", 18, 18, "poisson_ratio = 0.3\nnonlocal_length = 1", 19,
+                  "material[0].nonlocal_length", "unknown key"},
         ErrorCase{"NegativeEta", 18, 18, std::string(kTrescaClay) + "\neta = -0.1", 21,
                   "material[0].eta", "must be >= 0 (got -0.1)"},
         ErrorCase{"RateExponentAboveOne", 18, 18,
@@ -473,7 +475,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.materials[i].rate_exponent, b.materials[i].rate_exponent);
     EXPECT_EQ(a.materials[i].reference_rate, b.materials[i].reference_rate);
     EXPECT_EQ(a.materials[i].strength_form, b.materials[i].strength_form);
-    EXPECT_EQ(a.materials[i].xi95_reference_cell, b.materials[i].xi95_reference_cell);
+    EXPECT_EQ(a.materials[i].nonlocal_length, b.materials[i].nonlocal_length);
   }
   ASSERT_EQ(a.bodies.size(), b.bodies.size());
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {
@@ -513,7 +515,7 @@ TEST(SceneWriter, EveryNonDefaultValueRoundTrips) {
       "[[material]]\nname = \"a\"\ndensity = 525\nyoungs_modulus = 1.5e6\npoisson_ratio = -0.2\n"
       "model = \"tresca\"\nsu0 = 15e3\nsensitivity = 40\nxi95 = 45\neta = 0.0167\n"
       "rate_exponent = 0.5\nreference_rate = 0.3\nstrength_form = \"additive\"\n"
-      "xi95_reference_cell = 0.07\n"
+      "nonlocal_length = 0.07\n"
       "[[material]]\nname = \"b\"\ndensity = 2000.5\nyoungs_modulus = 3e7\npoisson_ratio = 0.1\n"
       "[[body]]\nname = \"t\"\nmaterial = \"b\"\ntype = \"trapezoid\"\n"
       "base_start = [0.1, 0.8]\nbase_length = 5.3\nheight = 1.1\n"

@@ -11,16 +11,12 @@
 //   particle row by about +-7 % of rho g H around the exact profile; the
 //   cell-averaged volumetric strain rate and mean stress (solver
 //   volumetric_smoothing) remove it (measured RMS error / (rho g H): 0.063
-//   without, 0.0033 with; 0.0035 without at nu = 0.3);
-// - mesh-adjusted softening reaches the MPM's parameters with the cell
-//   size. Whether it makes runouts mesh-independent is measured, not
-//   asserted: on a coarse ladder it over-corrects (docs/study.md, "Case 4
-//   runout against cell size").
+//   without, 0.0033 with; 0.0035 without at nu = 0.3).
+// Softening's mesh dependence and its regularisation: test_regularisation.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
 #include "scene_builders.hpp"
 
@@ -98,21 +94,6 @@ TEST(Stability, VolumetricSmoothingRemovesTheLockingPressureOscillation) {
   EXPECT_LT(smoothed, 0.01);
   EXPECT_GT(locked, 5.0 * smoothed);
   EXPECT_LT(compressible, 0.01);
-}
-
-// Mesh-adjusted softening (docs/strength.md): the MPM's xi95 at cell size
-// h is xi95 h_ref / h, in the parameters both drivers take from a
-// Simulation (the CUDA one builds its own from a particle-less one), and
-// a --cell override changes it with h; without the key xi95 is as given.
-TEST(Stability, MeshAdjustedSofteningScalesXi95WithTheCellSize) {
-  Scene s = load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/case4_spreading.toml");
-  ASSERT_EQ(s.materials[0].xi95, 5.0);
-  apply_overrides(s, 0.5, 2);
-  EXPECT_EQ(Simulation(s, Particles{}).materials()[0].strength.xi95, 5.0);
-  s.materials[0].xi95_reference_cell = 0.1;
-  EXPECT_DOUBLE_EQ(Simulation(s, Particles{}).materials()[0].strength.xi95, 1.0);
-  apply_overrides(s, 0.25, 2);
-  EXPECT_DOUBLE_EQ(Simulation(s, Particles{}).materials()[0].strength.xi95, 2.0);
 }
 
 TEST(Stability, LinearMpmCellCrossingNoiseIsSeveralTimesGimps) {

@@ -13,6 +13,8 @@
 
 #include "cuda_simulation.cuh"
 #include "runout/cuda_simulation.hpp"
+#include "runout/materials.hpp"
+#include "runout/scene_parser.hpp"  // SceneError
 #include "runout/seeding.hpp"
 #include "runout/stages.hpp"
 
@@ -381,6 +383,9 @@ CudaSimulation::Impl::Impl(const Scene& scene, const Particles& P)
       spacing(scene.grid.cell_size / scene.grid.ppc),
       smooth(scene.solver.volumetric_smoothing),
       n(P.size()) {
+  // A resumed run reaches here without the CLI's check of the scene.
+  if (const std::string refusal = cuda_refusal(scene); !refusal.empty())
+    throw SceneError(refusal, 0);
   std::string why;
   if (!cuda_device_available(why)) throw std::runtime_error(why);
   auto setup = cpu_setup(scene);

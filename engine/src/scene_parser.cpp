@@ -415,7 +415,6 @@ void read_tresca(const TableReader& r, MaterialSpec& m) {
   if (auto v = r.find("reference_rate")) m.reference_rate = v->number(above(0.0));
   if (auto v = r.find("strength_form"))
     m.strength_form = v->choice(scene_text::kStrengthFormNames).value;
-  if (auto v = r.find("xi95_reference_cell")) m.xi95_reference_cell = v->number(above(0.0));
   if (auto v = r.find("nonlocal_length")) m.nonlocal_length = v->number(above(0.0));
 }
 
@@ -429,8 +428,7 @@ std::vector<MaterialSpec> read_materials(const TableReader& root) {
                                           "poisson_ratio"};
     if (m.model == MaterialModel::Tresca)
       keys.insert(keys.end(), {"su0", "sensitivity", "xi95", "eta", "rate_exponent",
-                               "reference_rate", "strength_form", "xi95_reference_cell",
-                               "nonlocal_length"});
+                               "reference_rate", "strength_form", "nonlocal_length"});
     r.check_keys(keys);
     const Value name = r.need("name");
     m.name = name.string();

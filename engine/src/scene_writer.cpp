@@ -95,8 +95,6 @@ void write_material(std::ostream& out, const MaterialSpec& m) {
         << "reference_rate = " << number(m.reference_rate) << "\n"
         << "strength_form = "
         << quoted(name_of(scene_text::kStrengthFormNames, m.strength_form)) << "\n";
-    if (m.xi95_reference_cell > 0.0)  // 0 (off) is not a value the key takes
-      out << "xi95_reference_cell = " << number(m.xi95_reference_cell) << "\n";
     if (m.nonlocal_length > 0.0)  // 0 (local) is not a value the key takes
       out << "nonlocal_length = " << number(m.nonlocal_length) << "\n";
   }

@@ -57,7 +57,7 @@ std::vector<double> nonlocal_lengths(const Scene& s) {
 
 std::vector<MaterialParams> make_materials(const Scene& s) {
   std::vector<MaterialParams> out;
-  for (const auto& m : s.materials) out.push_back(material_params(m, s.grid.cell_size));
+  for (const auto& m : s.materials) out.push_back(material_params(m));
   return out;
 }
 

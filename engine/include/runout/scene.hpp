@@ -63,10 +63,6 @@ struct MaterialSpec {
   double rate_exponent = 0.1;    // n
   double reference_rate = 1.0;   // gamma_dot_ref [1/s]
   StrengthForm strength_form = StrengthForm::Multiplicative;
-  // Mesh-adjusted softening (docs/strength.md): > 0, the cell size [m] at
-  // which xi95 holds; the MPM then uses xi95 * xi95_reference_cell / h.
-  // 0: xi95 as given at every cell size.
-  double xi95_reference_cell = 0.0;
   // Nonlocal softening (docs/strength.md, nonlocal.hpp): > 0, the length l
   // [m] over which the MPM averages each step's increment of xi. 0: local.
   double nonlocal_length = 0.0;
