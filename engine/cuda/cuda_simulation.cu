@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 
 #include "cuda_simulation.cuh"
@@ -156,6 +157,25 @@ struct AtomicAdd {
   __device__ void operator()(double* a, int n, double v) const { atomicAdd(a + n, v); }
 };
 
+// The minimum functor of stages.hpp (the nodal gap): CUDA has no double
+// atomicMin, so compare-and-swap until the stored value is at most v.
+struct AtomicMin {
+  __device__ void operator()(double* a, int n, double v) const {
+    auto* address = reinterpret_cast<unsigned long long*>(a + n);
+    unsigned long long old = *address;
+    while (v < __longlong_as_double(static_cast<long long>(old))) {
+      const unsigned long long assumed = old;
+      old = atomicCAS(address, assumed, static_cast<unsigned long long>(__double_as_longlong(v)));
+      if (old == assumed) break;
+    }
+  }
+};
+
+__global__ void fill_kernel(double* a, int n, double v) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) a[i] = v;
+}
+
 __global__ void bin_kernel(ParticleView P, GridView g, int cells_x, int* key, int* value) {
   const int p = blockIdx.x * blockDim.x + threadIdx.x;
   if (p >= P.n) return;
@@ -203,7 +223,7 @@ __device__ inline Stencil2D stencil_of(const ParticleView& P, int p, const GridV
 __global__ void p2g_kernel(ParticleView P, GridView g, StepConfig c) {
   const int p = blockIdx.x * blockDim.x + threadIdx.x;
   if (p >= P.n) return;
-  p2g(P, p, stencil_of(P, p, g, c), g, c, AtomicAdd{});
+  p2g(P, p, stencil_of(P, p, g, c), g, c, AtomicAdd{}, AtomicMin{});
 }
 
 __global__ void grid_update_kernel(GridView g, StepConfig c, double dt) {
@@ -211,9 +231,9 @@ __global__ void grid_update_kernel(GridView g, StepConfig c, double dt) {
   if (n < g.size()) grid_update(g, n, c, dt);
 }
 
-__global__ void g2p_kernel(ParticleView P, GridView g, StepConfig c, double dt, StepScratch s) {
+__global__ void g2p_kernel(ParticleView P, GridView g, StepConfig c) {
   const int p = blockIdx.x * blockDim.x + threadIdx.x;
-  if (p < P.n) g2p(P, p, stencil_of(P, p, g, c), g, c, dt, s);
+  if (p < P.n) g2p(P, p, stencil_of(P, p, g, c), g, c);
 }
 
 __global__ void p2g_momentum_kernel(ParticleView P, GridView g, StepConfig c) {
@@ -221,9 +241,9 @@ __global__ void p2g_momentum_kernel(ParticleView P, GridView g, StepConfig c) {
   if (p < P.n) p2g_momentum(P, p, stencil_of(P, p, g, c), g, AtomicAdd{});
 }
 
-__global__ void remap_kernel(GridView g, StepConfig c) {
+__global__ void remap_kernel(GridView g, StepConfig c, double dt) {
   const int n = blockIdx.x * blockDim.x + threadIdx.x;
-  if (n < g.size()) remap_velocity(g, n, c);
+  if (n < g.size()) remap_velocity(g, n, c, dt);
 }
 
 // Per-particle velocity gradients, in structure-of-arrays.
@@ -236,13 +256,17 @@ struct CellSums {
   double *vol, *sum;
 };
 
-// L, and with smoothing the cell sums of V and V tr L (simulation.cpp's
-// cell_means, with atomics instead of the CPU's block ownership).
-__global__ void gradient_kernel(ParticleView P, GridView g, StepConfig c, Gradients L,
-                                const int* cell, CellSums cs, bool smooth) {
+// L and the step displacement, and with smoothing the cell sums of V and
+// V tr L (simulation.cpp's cell_means, with atomics instead of the CPU's
+// block ownership).
+__global__ void gradient_kernel(ParticleView P, GridView g, StepConfig c, double dt,
+                                StepScratch s, Gradients L, const int* cell, CellSums cs,
+                                bool smooth) {
   const int p = blockIdx.x * blockDim.x + threadIdx.x;
   if (p >= P.n) return;
-  const VelocityGradient l = velocity_gradient(stencil_of(P, p, g, c), g);
+  const Stencil2D st = stencil_of(P, p, g, c);
+  const VelocityGradient l = velocity_gradient(st, g);
+  displacement(p, st, g, dt, s);
   L.xx[p] = l.xx;
   L.xy[p] = l.xy;
   L.yx[p] = l.yx;
@@ -341,7 +365,7 @@ struct CudaSimulation::Impl {
   Buffer<double> dx, dy, lxx, lxy, lyx, lyy, speed;
   Buffer<int> keys_in, keys_out, values_in, values_out;
   Buffer<unsigned char> sort_temp;
-  Buffer<double> grid_arrays[13];
+  Buffer<double> grid_arrays[14];
   GridView grid;  // device pointers
   int cells_x = 0, cells = 0;
   Buffer<double> cell_vol, cell_sum;
@@ -465,11 +489,15 @@ void CudaSimulation::Impl::fit_grid(double dt) {
   g.oy = ymin_domain + j_lo * h;
   const std::size_t nodes = static_cast<std::size_t>(g.nx) * g.ny;
   for (auto& a : grid_arrays) a.reserve(nodes);  // grow-only
-  double** const ptrs[13] = {&g.m,  &g.vol, &g.px, &g.py, &g.fx,  &g.fy,   &g.v0x,
-                             &g.v0y, &g.vx, &g.vy, &g.vmx, &g.vmy, &g.fbase};
-  for (int k = 0; k < 13; ++k) *ptrs[k] = grid_arrays[k].get();
+  double** const ptrs[14] = {&g.m,  &g.vol, &g.px, &g.py, &g.fx,  &g.fy,    &g.v0x,
+                             &g.v0y, &g.vx, &g.vy, &g.vmx, &g.vmy, &g.fbase, &g.gap};
+  for (int k = 0; k < 14; ++k) *ptrs[k] = grid_arrays[k].get();
   for (int k = 0; k < 6; ++k)  // m, vol, p, f: the accumulated ones
     RUNOUT_CUDA_CHECK(cudaMemsetAsync(grid_arrays[k].get(), 0, nodes * sizeof(double)));
+  // The gap, a minimum: +infinity where no particle is.
+  fill_kernel<<<blocks_for(static_cast<int>(nodes)), kThreads>>>(
+      g.gap, static_cast<int>(nodes), std::numeric_limits<double>::infinity());
+  RUNOUT_CUDA_LAUNCHED("fill gap");
   cells_x = g.nx - 1;
   cells = cells_x * (g.ny - 1);
   cell_vol.reserve(cells);
@@ -518,13 +546,13 @@ void CudaSimulation::Impl::step(double dt) {
   RUNOUT_CUDA_LAUNCHED("p2g");
   grid_update_kernel<<<nb, kThreads>>>(g, c, dt);
   RUNOUT_CUDA_LAUNCHED("grid_update");
-  g2p_kernel<<<pb, kThreads>>>(P, g, c, dt, s);
+  g2p_kernel<<<pb, kThreads>>>(P, g, c);
   RUNOUT_CUDA_LAUNCHED("g2p");
   RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.px, 0, nodes * sizeof(double)));
   RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.py, 0, nodes * sizeof(double)));
   p2g_momentum_kernel<<<pb, kThreads>>>(P, g, c);
   RUNOUT_CUDA_LAUNCHED("p2g_momentum");
-  remap_kernel<<<nb, kThreads>>>(g, c);
+  remap_kernel<<<nb, kThreads>>>(g, c, dt);
   RUNOUT_CUDA_LAUNCHED("remap_velocity");
 
   const auto clear_cells = [&] {
@@ -532,7 +560,7 @@ void CudaSimulation::Impl::step(double dt) {
     RUNOUT_CUDA_CHECK(cudaMemsetAsync(cs.sum, 0, cells * sizeof(double)));
   };
   if (smooth) clear_cells();
-  gradient_kernel<<<pb, kThreads>>>(P, g, c, L, cell, cs, smooth);
+  gradient_kernel<<<pb, kThreads>>>(P, g, c, dt, s, L, cell, cs, smooth);
   RUNOUT_CUDA_LAUNCHED("velocity_gradient");
   stress_kernel<<<pb, kThreads>>>(P, L, cell, cs, smooth, device_materials.get(), dt, s,
                                   limits, speed.get());

@@ -1,6 +1,7 @@
 #include "runout/grid.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace runout {
 
@@ -17,7 +18,7 @@ void Grid::fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x,
   const std::size_t n = static_cast<std::size_t>(g.nx) * g.ny;
   if (n > m_.size()) {
     for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &vmx_, &vmy_,
-                    &fbase_})
+                    &fbase_, &gap_})
       a->resize(n);
   }
   g.m = m_.data();
@@ -33,7 +34,9 @@ void Grid::fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x,
   g.vmx = vmx_.data();
   g.vmy = vmy_.data();
   g.fbase = fbase_.data();
+  g.gap = gap_.data();
   for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_}) std::fill_n(a->begin(), n, 0.0);
+  std::fill_n(gap_.begin(), n, std::numeric_limits<double>::infinity());
 }
 
 }  // namespace runout

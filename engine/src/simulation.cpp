@@ -257,24 +257,28 @@ void Simulation::step(double dt) {
   const int nodes = g.size();
 
   const Stencil2D* st = stencils_.data();
-  scatter([&](int p, auto add) { p2g(P, p, st[p], g, c, add); });
+  const auto lower = [](double* a, int n, double v) { a[n] = std::min(a[n], v); };
+  scatter([&](int p, auto add) { p2g(P, p, st[p], g, c, add, lower); });
 #pragma omp parallel for if (nodes > kParallelMin)
   for (int n = 0; n < nodes; ++n) grid_update(g, n, c, dt);
   double basal = 0;  // in node order, so the same every run
   if (c.base.kind != BaseKind::None)
     for (int n = 0; n < nodes; ++n) basal += g.fbase[n];
 #pragma omp parallel for if (P.n > kParallelMin)
-  for (int p = 0; p < P.n; ++p) g2p(P, p, st[p], g, c, dt, s);
+  for (int p = 0; p < P.n; ++p) g2p(P, p, st[p], g, c);
 
   std::fill_n(g.px, nodes, 0.0);
   std::fill_n(g.py, nodes, 0.0);
   scatter([&](int p, auto add) { p2g_momentum(P, p, st[p], g, add); });
 #pragma omp parallel for if (nodes > kParallelMin)
-  for (int n = 0; n < nodes; ++n) remap_velocity(g, n, c);
+  for (int n = 0; n < nodes; ++n) remap_velocity(g, n, c, dt);
 
   VelocityGradient* L = gradients_.data();
 #pragma omp parallel for if (P.n > kParallelMin)
-  for (int p = 0; p < P.n; ++p) L[p] = velocity_gradient(st[p], g);
+  for (int p = 0; p < P.n; ++p) {
+    L[p] = velocity_gradient(st[p], g);
+    displacement(p, st[p], g, dt, s);
+  }
   if (smooth_volumetric_) smooth_volumetric_rates();
   if (nonlocal_.active()) xi_start_.assign(P.xi, P.xi + P.n);
 

@@ -23,6 +23,7 @@ struct GridView {
   double *vx, *vy;          // velocity at the end of the step, constrained
   double *vmx, *vmy;        // mid-step velocity (v0 + v)/2, constrained
   double *fbase;            // base's tangential force on the slide at the node, along +s
+  double *gap;              // min over the node's particles of their gap to the base
 
   RUNOUT_HD int index(int i, int j) const { return j * nx + i; }
   RUNOUT_HD int size() const { return nx * ny; }
@@ -30,8 +31,9 @@ struct GridView {
 
 class Grid {
  public:
-  // Sets the box to cover nodes [i_lo, i_hi] x [j_lo, j_hi] (global) and
-  // zeroes mass, momentum and force. Storage only ever grows.
+  // Sets the box to cover nodes [i_lo, i_hi] x [j_lo, j_hi] (global),
+  // zeroes mass, momentum and force and sets the gap to +infinity (no
+  // particle). Storage only ever grows.
   void fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x, double domain_y,
            double h);
   GridView view() { return view_; }
@@ -40,7 +42,8 @@ class Grid {
 
  private:
   GridView view_;
-  std::vector<double> m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_, fbase_;
+  std::vector<double> m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_, fbase_,
+      gap_;
 };
 
 }  // namespace runout
