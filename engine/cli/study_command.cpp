@@ -102,7 +102,7 @@ std::vector<Variant> variants(const StudyArgs& a, const Scene& base) {
   std::vector<Variant> out;
   for (double x : ends)
     for (const std::optional<double>& angle : angles) {
-      Variant v{base, "", x, angle};
+      Variant v{base, "", x, angle, std::nullopt};
       v.scene.grid.max.x() = x;
       if (angle) study::set_slope_angle(v.scene, *angle);
       if (a.reference == "analytic-block") v.block = study::rigid_block(v.scene);
