@@ -183,11 +183,11 @@ double spread(const std::vector<double>& v) {
 
 }  // namespace
 
-// The plain runouts grow with refinement (measured 19.9, 23.1, 24.5 m:
+// The plain runouts grow with refinement (measured 19.7, 22.9, 24.2 m:
 // 21 % spread), as bands two cells thick soften after less displacement.
 // l = 1.5 m, twice the coarsest cell, spreads each plastic increment over a
 // few l on all three meshes, so a band's thickness is set by l and not by h
-// (measured 18.4, 19.3, 19.7 m: 7 %; still growing with refinement, by
+// (measured 18.2, 19.1, 19.6 m: 7 %; still growing with refinement, by
 // 0.9 m and then 0.4 m).
 TEST(Regularisation, NonlocalSofteningMakesTheRunoutMeshIndependent) {
   const std::vector<double> cells = {0.75, 0.5, 0.375};
