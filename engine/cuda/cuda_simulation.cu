@@ -473,20 +473,8 @@ void CudaSimulation::Impl::fit_grid(double dt) {
   if (b.bad > 0 || !(b.xmin >= limits.xmin && b.ymin >= limits.ymin && b.xmax <= limits.xmax &&
                      b.ymax <= limits.ymax))
     fail(dt);
-  const auto cell = [this](double v, double origin) {
-    return static_cast<int>(std::floor((v - origin) / h));
-  };
-  // As Grid::fit: cells c touch nodes c-1..c+2.
-  const int i_lo = cell(b.xmin, xmin_domain) - 1, i_hi = cell(b.xmax, xmin_domain) + 2;
-  const int j_lo = cell(b.ymin, ymin_domain) - 1, j_hi = cell(b.ymax, ymin_domain) + 2;
   GridView& g = grid;
-  g.nx = i_hi - i_lo + 1;
-  g.ny = j_hi - j_lo + 1;
-  g.i0 = i_lo;
-  g.j0 = j_lo;
-  g.h = h;
-  g.ox = xmin_domain + i_lo * h;
-  g.oy = ymin_domain + j_lo * h;
+  place_box(g, b.xmin, b.xmax, b.ymin, b.ymax, xmin_domain, ymin_domain, h);
   const std::size_t nodes = static_cast<std::size_t>(g.nx) * g.ny;
   for (auto& a : grid_arrays) a.reserve(nodes);  // grow-only
   double** const ptrs[14] = {&g.m,  &g.vol, &g.px, &g.py, &g.fx,  &g.fy,    &g.v0x,

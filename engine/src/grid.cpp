@@ -5,16 +5,10 @@
 
 namespace runout {
 
-void Grid::fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x,
+void Grid::fit(double xmin, double xmax, double ymin, double ymax, double domain_x,
                double domain_y, double h) {
   GridView& g = view_;
-  g.nx = i_hi - i_lo + 1;
-  g.ny = j_hi - j_lo + 1;
-  g.i0 = i_lo;
-  g.j0 = j_lo;
-  g.h = h;
-  g.ox = domain_x + i_lo * h;
-  g.oy = domain_y + j_lo * h;
+  place_box(g, xmin, xmax, ymin, ymax, domain_x, domain_y, h);
   const std::size_t n = static_cast<std::size_t>(g.nx) * g.ny;
   if (n > m_.size()) {
     for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &vmx_, &vmy_,

@@ -127,13 +127,7 @@ void Simulation::fit_grid(double dt) {
   const GuardLimits& g = limits_;
   if (non_finite > 0 || !(xmin >= g.xmin && ymin >= g.ymin && xmax <= g.xmax && ymax <= g.ymax))
     throw NumericalFailure(describe_faults(particles_, limits_, steps_, time_, dt));
-  const auto cell = [this](double v, double origin) {
-    return static_cast<int>(std::floor((v - origin) / h_));
-  };
-  // Cells c touch nodes c-1..c+2: one ghost node below, two above.
-  grid_.fit(cell(xmin, domain_min_.x()) - 1, cell(xmax, domain_min_.x()) + 2,
-            cell(ymin, domain_min_.y()) - 1, cell(ymax, domain_min_.y()) + 2,
-            domain_min_.x(), domain_min_.y(), h_);
+  grid_.fit(xmin, xmax, ymin, ymax, domain_min_.x(), domain_min_.y(), h_);
 }
 
 void Simulation::bin_particles() {

@@ -3,6 +3,7 @@
 // scene's domain. Node (i, j) of the box is global node (i0 + i, j0 + j),
 // global node (0, 0) being the domain's min corner. Nodal fields are reset
 // every step, so moving the box costs nothing but a resize when it grows.
+#include <cmath>
 #include <vector>
 
 #include "runout/host_device.hpp"
@@ -29,13 +30,32 @@ struct GridView {
   RUNOUT_HD int size() const { return nx * ny; }
 };
 
+// Places g's box over the nodes that particles spanning [xmin, xmax] x
+// [ymin, ymax] touch, on the lattice of spacing h through the domain corner
+// (domain_x, domain_y): a particle in cell c touches nodes c-1..c+2 (GIMP),
+// so one ghost node below the span and two above. Sets the sizes and the
+// origin only; the CPU and the CUDA drivers both fit their grids with it.
+inline void place_box(GridView& g, double xmin, double xmax, double ymin, double ymax,
+                      double domain_x, double domain_y, double h) {
+  const auto cell = [h](double v, double origin) {
+    return static_cast<int>(std::floor((v - origin) / h));
+  };
+  g.i0 = cell(xmin, domain_x) - 1;
+  g.j0 = cell(ymin, domain_y) - 1;
+  g.nx = cell(xmax, domain_x) + 2 - g.i0 + 1;
+  g.ny = cell(ymax, domain_y) + 2 - g.j0 + 1;
+  g.h = h;
+  g.ox = domain_x + g.i0 * h;
+  g.oy = domain_y + g.j0 * h;
+}
+
 class Grid {
  public:
-  // Sets the box to cover nodes [i_lo, i_hi] x [j_lo, j_hi] (global),
-  // zeroes mass, momentum and force and sets the gap to +infinity (no
-  // particle). Storage only ever grows.
-  void fit(int i_lo, int i_hi, int j_lo, int j_hi, double domain_x, double domain_y,
-           double h);
+  // Sets the box over particles spanning [xmin, xmax] x [ymin, ymax]
+  // (place_box), zeroes mass, momentum and force and sets the gap to
+  // +infinity (no particle). Storage only ever grows.
+  void fit(double xmin, double xmax, double ymin, double ymax, double domain_x,
+           double domain_y, double h);
   GridView view() { return view_; }
   const GridView& view() const { return view_; }
   std::size_t capacity() const { return m_.size(); }
