@@ -27,13 +27,15 @@ using cuda::Buffer;
 using cuda::kThreads;
 
 // The 16 double fields of a particle, in ParticleView's order.
-constexpr int kDoubleFields = 16;
+constexpr int kDoubleFields = kParticleDoubles;
 using DoubleField = std::vector<double> Particles::*;
 const DoubleField kHostDoubles[kDoubleFields] = {
     &Particles::x,   &Particles::y,   &Particles::vx,        &Particles::vy,
     &Particles::mass, &Particles::vol0, &Particles::vol,     &Particles::sxx,
     &Particles::syy, &Particles::sxy, &Particles::szz,       &Particles::xi,
-    &Particles::gamma_dot, &Particles::su, &Particles::x0,   &Particles::y0};
+    &Particles::gamma_dot, &Particles::su, &Particles::x0,   &Particles::y0,
+    &Particles::cxx, &Particles::cxy, &Particles::cyx,      &Particles::cyy,
+    &Particles::fxx, &Particles::fxy, &Particles::fyx,      &Particles::fyy};
 
 // Raw device pointers of one copy of the particle arrays, plus origin: the
 // particle's index in the order it was given, which download() restores.
@@ -50,7 +52,9 @@ ParticleView view_of(const Fields& f, int n) {
   v.n = n;
   double** const out[kDoubleFields] = {&v.x,   &v.y,   &v.vx,  &v.vy,  &v.mass, &v.vol0,
                                        &v.vol, &v.sxx, &v.syy, &v.sxy, &v.szz,  &v.xi,
-                                       &v.gamma_dot, &v.su, &v.x0, &v.y0};
+                                       &v.gamma_dot, &v.su, &v.x0, &v.y0,
+                                       &v.cxx, &v.cxy, &v.cyx, &v.cyy,
+                                       &v.fxx, &v.fxy, &v.fyx, &v.fyy};
   for (int k = 0; k < kDoubleFields; ++k) *out[k] = f.d[k];
   v.body = f.body;
   v.material = f.material;
@@ -216,7 +220,7 @@ __global__ void scatter_back_kernel(int n, Fields src, Fields dst) {
 __device__ inline Stencil2D stencil_of(const ParticleView& P, int p, const GridView& g,
                                        const StepConfig& c) {
   Stencil2D st;
-  make_stencil(g, c, P.x[p], P.y[p], st);
+  make_stencil(g, c, P, p, st);
   return st;
 }
 
@@ -365,7 +369,8 @@ struct CudaSimulation::Impl {
   Buffer<double> dx, dy, lxx, lxy, lyx, lyy, speed;
   Buffer<int> keys_in, keys_out, values_in, values_out;
   Buffer<unsigned char> sort_temp;
-  Buffer<double> grid_arrays[14];
+  static constexpr int kGridArrays = 15;  // the double arrays of GridView
+  Buffer<double> grid_arrays[kGridArrays];
   GridView grid;  // device pointers
   int cells_x = 0, cells = 0;
   Buffer<double> cell_vol, cell_sum;
@@ -477,9 +482,10 @@ void CudaSimulation::Impl::fit_grid(double dt) {
   place_box(g, b.xmin, b.xmax, b.ymin, b.ymax, xmin_domain, ymin_domain, h);
   const std::size_t nodes = static_cast<std::size_t>(g.nx) * g.ny;
   for (auto& a : grid_arrays) a.reserve(nodes);  // grow-only
-  double** const ptrs[14] = {&g.m,  &g.vol, &g.px, &g.py, &g.fx,  &g.fy,    &g.v0x,
-                             &g.v0y, &g.vx, &g.vy, &g.vmx, &g.vmy, &g.fbase, &g.gap};
-  for (int k = 0; k < 14; ++k) *ptrs[k] = grid_arrays[k].get();
+  double** const ptrs[kGridArrays] = {&g.m,  &g.vol, &g.px,  &g.py,    &g.fx,  &g.fy,
+                                       &g.v0x, &g.v0y, &g.vx, &g.vy,    &g.vmx, &g.vmy,
+                                       &g.fbase, &g.gap, &g.stuck};
+  for (int k = 0; k < kGridArrays; ++k) *ptrs[k] = grid_arrays[k].get();
   for (int k = 0; k < 6; ++k)  // m, vol, p, f: the accumulated ones
     RUNOUT_CUDA_CHECK(cudaMemsetAsync(grid_arrays[k].get(), 0, nodes * sizeof(double)));
   // The gap, a minimum: +infinity where no particle is.
@@ -522,6 +528,9 @@ void CudaSimulation::Impl::step(double dt) {
   sort_by_cell();
   const GridView g = grid;
   const ParticleView P = particles();
+  device_config.gravity_scale = gravity_factor(time + 0.5 * dt, device_config.gravity_ramp);
+  device_config.flip_step =
+      flip_share(device_config.transfer, device_config.flip, device_config.pic_time, dt);
   const StepConfig& c = device_config;
   const StepScratch s{dx.get(), dy.get()};
   const int nodes = g.size();

@@ -2,20 +2,22 @@
 
 namespace runout {
 
-std::array<std::vector<double>*, 16> Particles::double_arrays() {
-  return {&x, &y, &vx, &vy, &mass, &vol0, &vol, &sxx, &syy, &sxy, &szz, &xi, &gamma_dot, &su,
-          &x0, &y0};
+std::array<std::vector<double>*, kParticleDoubles> Particles::double_arrays() {
+  return {&x,   &y,   &vx,  &vy,  &mass, &vol0, &vol, &sxx, &syy, &sxy, &szz, &xi,
+          &gamma_dot, &su, &x0, &y0, &cxx, &cxy, &cyx, &cyy, &fxx, &fxy, &fyx, &fyy};
 }
 
-std::array<const std::vector<double>*, 16> Particles::double_arrays() const {
+std::array<const std::vector<double>*, kParticleDoubles> Particles::double_arrays() const {
   const auto a = const_cast<Particles*>(this)->double_arrays();
-  std::array<const std::vector<double>*, 16> out;
+  std::array<const std::vector<double>*, kParticleDoubles> out;
   for (std::size_t k = 0; k < a.size(); ++k) out[k] = a[k];
   return out;
 }
 
 void Particles::resize(int n) {
   for (auto* a : double_arrays()) a->assign(n, 0.0);
+  fxx.assign(n, 1.0);
+  fyy.assign(n, 1.0);
   body.assign(n, 0);
   material.assign(n, 0);
   id.assign(n, 0);
@@ -47,7 +49,9 @@ ParticleView Particles::view() {
                       vy.data(),     mass.data(), vol0.data(), vol.data(),
                       sxx.data(),    syy.data(),  sxy.data(), szz.data(),
                       xi.data(),     gamma_dot.data(), su.data(), x0.data(),
-                      y0.data(),     body.data(), material.data(), id.data()};
+                      y0.data(),     cxx.data(),  cxy.data(), cyx.data(),
+                      cyy.data(),    fxx.data(),  fxy.data(), fyx.data(),
+                      fyy.data(),    body.data(), material.data(), id.data()};
 }
 
 }  // namespace runout

@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "runout/polygon.hpp"
+#include "runout/stages.hpp"
 #include "scene_text.hpp"
 
 namespace runout {
@@ -52,6 +53,18 @@ const Range kPpcRange = between(1, 16, "[]");
 constexpr double kMaxFrames = 1e6;
 
 // Why end / interval gives too many frames, or "".
+// A Courant number beyond what the step's shape functions and transfer
+// hold answers differently from a smaller one, so it is refused.
+std::string courant_refusal(double courant, ShapeKind shape, TransferKind transfer) {
+  const double limit = max_courant(shape, transfer);
+  if (courant <= limit) return "";
+  return "must be <= " + format_number(limit) + " with shape " +
+         std::string(scene_text::name_of(scene_text::kShapeNames, shape)) + " and transfer " +
+         std::string(scene_text::name_of(scene_text::kTransferNames, transfer)) + " (got " +
+         format_number(courant) + "): beyond it the runout changes with the time step " +
+         "(docs/convergence.md)";
+}
+
 std::string too_many_frames(double end, double interval) {
   const double frames = end / interval;
   if (frames <= kMaxFrames) return "";
@@ -318,13 +331,14 @@ void read_scene_info(TableReader r, Scene& scene) {
 }
 
 GridSpec read_grid(TableReader r) {
-  r.check_keys({"cell_size", "min", "max", "shape", "ppc"});
+  r.check_keys({"cell_size", "min", "max", "shape", "domain", "ppc"});
   GridSpec grid;
   grid.cell_size = r.need("cell_size").number(above(0.0));
   grid.min = r.need("min").vec2();
   const Value max = r.need("max");
   grid.max = max.vec2();
   if (auto v = r.find("shape")) grid.shape = v->choice(scene_text::kShapeNames).value;
+  if (auto v = r.find("domain")) grid.domain = v->choice(scene_text::kDomainNames).value;
   if (auto v = r.find("ppc")) grid.ppc = v->integer(kPpcRange);
   if ((grid.max.array() <= grid.min.array()).any())
     max.fail("must be greater than grid.min in both x and y");
@@ -352,13 +366,17 @@ BoundarySpec read_boundary(TableReader r) {
   return boundary;
 }
 
-TimeSpec read_time(TableReader r) {
+TimeSpec read_time(TableReader r, const GridSpec& grid, const SolverSpec& solver) {
   r.check_keys({"end", "output_interval", "courant", "rest_fraction", "rest_duration"});
   TimeSpec time;
   time.end = r.need("end").number(above(0.0));
   const Value interval = r.need("output_interval");
   time.output_interval = interval.number(above(0.0));
-  if (auto v = r.find("courant")) time.courant = v->number(between(0, 1, "(]"));
+  if (auto v = r.find("courant")) {
+    time.courant = v->number(between(0, 1, "(]"));
+    const std::string refusal = courant_refusal(time.courant, grid.shape, solver.transfer);
+    if (!refusal.empty()) v->fail(refusal);
+  }
   if (auto v = r.find("rest_fraction"))
     time.rest_fraction = v->number(between(0, 1, "[)"));
   if (auto v = r.find("rest_duration")) time.rest_duration = v->number(above(0.0));
@@ -373,8 +391,9 @@ TimeSpec read_time(TableReader r) {
 // Either a slope (magnitude and angle) or an explicit vector: giving both
 // would leave it unclear which one the run uses.
 GravitySpec read_gravity(TableReader r) {
-  r.check_keys({"magnitude", "slope_angle", "vector"});
+  r.check_keys({"magnitude", "slope_angle", "vector", "ramp"});
   GravitySpec gravity;
+  if (auto v = r.find("ramp")) gravity.ramp = v->number(at_least(0.0));
   const auto magnitude = r.find("magnitude");
   const auto angle = r.find("slope_angle");
   if (const auto vector = r.find("vector")) {
@@ -392,9 +411,12 @@ GravitySpec read_gravity(TableReader r) {
 }
 
 SolverSpec read_solver(TableReader r) {
-  r.check_keys({"flip", "mass_threshold", "damping", "volumetric_smoothing"});
+  r.check_keys({"transfer", "flip", "pic_cells", "mass_threshold", "damping",
+                "volumetric_smoothing"});
   SolverSpec solver;
+  if (auto v = r.find("transfer")) solver.transfer = v->choice(scene_text::kTransferNames).value;
   if (auto v = r.find("flip")) solver.flip = v->number(between(0, 1, "[]"));
+  if (auto v = r.find("pic_cells")) solver.pic_cells = v->number(at_least(0.0));
   if (auto v = r.find("mass_threshold"))
     solver.mass_threshold = v->number(between(0, 1, "[)"));
   if (auto v = r.find("damping")) solver.damping = v->number(between(0, 1, "[)"));
@@ -665,9 +687,9 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     scene.base = read_base(base->table(), scene.grid);
     free_bottom_for_base(boundary, scene.boundary);
   }
-  scene.time = read_time(root.need("time").table());
-  scene.gravity = read_gravity(root.optional_table("gravity"));
   scene.solver = read_solver(root.optional_table("solver"));
+  scene.time = read_time(root.need("time").table(), scene.grid, scene.solver);
+  scene.gravity = read_gravity(root.optional_table("gravity"));
   scene.materials = read_materials(root);
   scene.bodies = read_bodies(root, scene.materials, scene.grid);
   scene.dam = read_dam(root.optional_table("dam"));

@@ -23,6 +23,10 @@ struct Named {
 
 inline constexpr Named<ShapeKind> kShapeNames[] = {
     {"gimp", ShapeKind::Gimp}, {"linear", ShapeKind::Linear}};
+inline constexpr Named<DomainKind> kDomainNames[] = {
+    {"deforming", DomainKind::Deforming}, {"fixed", DomainKind::Fixed}};
+inline constexpr Named<TransferKind> kTransferNames[] = {
+    {"flip", TransferKind::Flip}, {"apic", TransferKind::Apic}, {"pic_flip", TransferKind::PicFlip}};
 inline constexpr Named<BoundaryKind> kBoundaryNames[] = {
     {"free", BoundaryKind::Free},
     {"slip", BoundaryKind::Slip},

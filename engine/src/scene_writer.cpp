@@ -77,6 +77,7 @@ void write_gravity(std::ostream& out, const GravitySpec& gravity) {
     out << "magnitude = " << number(slope_magnitude(gravity)) << "\n"
         << "slope_angle = " << number(gravity.slope_angle_deg) << "\n";
   }
+  out << "ramp = " << number(gravity.ramp) << "\n";
 }
 
 void write_material(std::ostream& out, const MaterialSpec& m) {
@@ -142,6 +143,7 @@ std::string to_toml(const Scene& scene) {
       << "min = " << vec2(grid.min) << "\n"
       << "max = " << vec2(grid.max) << "\n"
       << "shape = " << quoted(name_of(scene_text::kShapeNames, grid.shape)) << "\n"
+      << "domain = " << quoted(name_of(scene_text::kDomainNames, grid.domain)) << "\n"
       << "ppc = " << grid.ppc << "\n\n";
 
   const BoundarySpec& b = scene.boundary;
@@ -161,7 +163,10 @@ std::string to_toml(const Scene& scene) {
   write_gravity(out, scene.gravity);
 
   out << "\n[solver]\n"
+      << "transfer = " << quoted(name_of(scene_text::kTransferNames, scene.solver.transfer))
+      << "\n"
       << "flip = " << number(scene.solver.flip) << "\n"
+      << "pic_cells = " << number(scene.solver.pic_cells) << "\n"
       << "mass_threshold = " << number(scene.solver.mass_threshold) << "\n"
       << "damping = " << number(scene.solver.damping) << "\n"
       << "volumetric_smoothing = " << (scene.solver.volumetric_smoothing ? "true" : "false")

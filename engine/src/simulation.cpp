@@ -28,10 +28,19 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
   const double h = s.grid.cell_size;
   StepConfig c;
   c.shape = s.grid.shape;
+  c.domain = s.grid.domain;
   c.lp = h / (2.0 * s.grid.ppc);
   c.gx = s.gravity.vector.x();
   c.gy = s.gravity.vector.y();
+  c.gravity_ramp = s.gravity.ramp;
+  c.transfer = s.solver.transfer;
   c.flip = s.solver.flip;
+  // The PIC share's time scale: pic_cells crossings of a cell by the
+  // fastest P-wave, so it shrinks with the cell (the filtered sub-cell
+  // velocity then carries less and less) but not with the time step.
+  double c_max = 0;
+  for (const auto& m : materials) c_max = std::max(c_max, std::sqrt(p_wave_modulus(m) / m.density));
+  c.pic_time = c_max > 0.0 ? s.solver.pic_cells * h / c_max : 0.0;
   double rho_max = 0;
   for (const auto& m : materials) rho_max = std::max(rho_max, m.density);
   c.min_node_mass = s.solver.mass_threshold * rho_max * h * h;
@@ -143,7 +152,7 @@ void Simulation::bin_particles() {
     const int cj = static_cast<int>(std::floor((P.y[p] - g.oy) / g.h));
     particle_block_[p] = (cj / kBlock) * blocks_x_ + ci / kBlock;
     particle_cell_[p] = cj * cells_x + ci;
-    make_stencil(g, config_, P.x[p], P.y[p], stencils_[p]);
+    make_stencil(g, config_, P, p, stencils_[p]);
   }
   // Stable counting sort: within a block particles keep their index order,
   // which fixes the order of the sums at every node.
@@ -246,6 +255,8 @@ void Simulation::step(double dt) {
   }
   const GridView g = grid_.view();
   const ParticleView P = particles_.view();
+  config_.gravity_scale = gravity_factor(time_ + 0.5 * dt, config_.gravity_ramp);
+  config_.flip_step = flip_share(config_.transfer, config_.flip, config_.pic_time, dt);
   const StepConfig& c = config_;
   const StepScratch s{scratch_dx_.data(), scratch_dy_.data()};
   const int nodes = g.size();

@@ -25,6 +25,7 @@ struct GridView {
   double *vmx, *vmy;        // mid-step velocity (v0 + v)/2, constrained
   double *fbase;            // base's tangential force on the slide at the node, along +s
   double *gap;              // min over the node's particles of their gap to the base
+  double *stuck;            // 1 where Geo-contact held the node's material still, else 0
 
   RUNOUT_HD int index(int i, int j) const { return j * nx + i; }
   RUNOUT_HD int size() const { return nx * ny; }
@@ -63,7 +64,7 @@ class Grid {
  private:
   GridView view_;
   std::vector<double> m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_, fbase_,
-      gap_;
+      gap_, stuck_;
 };
 
 }  // namespace runout

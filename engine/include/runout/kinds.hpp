@@ -5,6 +5,13 @@
 namespace runout {
 
 enum class ShapeKind { Gimp, Linear };
+// A GIMP particle's domain: its initial square kept (uGIMP), or a rectangle
+// that follows the particle's deformation (stages.hpp, domain_half_widths).
+enum class DomainKind { Deforming, Fixed };
+// Grid-to-particle velocity transfer: FLIP with a PIC share that damps at a
+// rate set in physical time, APIC (affine particle-in-cell, Jiang et al.
+// 2015), or a per-step blend of PIC and FLIP.
+enum class TransferKind { Flip, Apic, PicFlip };
 enum class BoundaryKind { Free, Slip, Fixed };
 enum class MaterialModel { Elastic, Tresca };
 // How the softened strength and the rate factor combine (SCENES.md):

@@ -20,21 +20,31 @@ struct ParticleView {
   double *gamma_dot;      // shear strain rate [1/s]
   double *su;             // current undrained strength [Pa] (0 for elastic)
   double *x0, *y0;        // initial position [m]
+  // Affine velocity C = dv/dx carried by the particle (APIC, Jiang et al.
+  // 2015); zero under the PIC/FLIP transfer.
+  double *cxx, *cxy, *cyx, *cyy;
+  // Deformation gradient F (identity at the start): it shapes the particle's
+  // GIMP domain (stages.hpp, domain_half_widths).
+  double *fxx, *fxy, *fyx, *fyy;
   int *body;              // body index in the scene
   int *material;          // material index in the scene
   std::int64_t *id;       // stable particle id
 };
 
+// The number of double arrays a particle carries.
+constexpr int kParticleDoubles = 24;
+
 struct Particles {
   std::vector<double> x, y, vx, vy, mass, vol0, vol, sxx, syy, sxy, szz, xi,
-      gamma_dot, su, x0, y0;
+      gamma_dot, su, x0, y0, cxx, cxy, cyx, cyy, fxx, fxy, fyx, fyy;
   std::vector<int> body, material;
   std::vector<std::int64_t> id;
 
   int size() const { return static_cast<int>(x.size()); }
-  // The double arrays, always in this order (x .. y0 as declared).
-  std::array<std::vector<double>*, 16> double_arrays();
-  std::array<const std::vector<double>*, 16> double_arrays() const;
+  // The double arrays, always in this order (x .. fyy as declared).
+  std::array<std::vector<double>*, kParticleDoubles> double_arrays();
+  std::array<const std::vector<double>*, kParticleDoubles> double_arrays() const;
+  // n particles at rest, undeformed (F = I), everything else zero.
   void resize(int n);
   ParticleView view();
   // Reorders every array so that particle k becomes order[k].

@@ -15,6 +15,7 @@ struct GridSpec {
   Eigen::Vector2d min{0.0, 0.0};          // domain corner; a grid node lies here
   Eigen::Vector2d max{0.0, 0.0};          // opposite corner (snapped up to a node)
   ShapeKind shape = ShapeKind::Gimp;
+  DomainKind domain = DomainKind::Deforming;  // GIMP particle domains follow F
   int ppc = 2;                            // particles per cell per direction
 };
 
@@ -40,10 +41,15 @@ struct GravitySpec {
   // slope frame (x down the base), so vector = g (sin theta, -cos theta).
   Eigen::Vector2d vector{0.0, -9.81};
   double slope_angle_deg = 0.0;  // 0 unless the scene gives a slope
+  double ramp = 0.0;             // [s] gravity rises over this time (gravity_factor); 0: at once
 };
 
 struct SolverSpec {
-  double flip = 0.99;             // PIC/FLIP blend: 1 pure FLIP, 0 pure PIC
+  TransferKind transfer = TransferKind::Flip;
+  double flip = 0.99;             // PIC/FLIP blend (transfer "pic_flip"): 1 pure FLIP, 0 pure PIC
+  // Transfer "flip": the PIC share damps at the rate 1 / T, with T the time
+  // a P-wave takes to cross pic_cells cells (flip_share); 0: pure FLIP.
+  double pic_cells = 30.0;
   double mass_threshold = 1e-9;   // nodes lighter than this fraction of a full cell's mass are not accelerated
   double damping = 0.0;           // Cundall local non-viscous damping coefficient, 0..1
   bool volumetric_smoothing = true;  // cell-averaged volumetric strain rate (anti-locking)

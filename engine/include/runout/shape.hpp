@@ -11,6 +11,7 @@ namespace runout {
 
 struct Stencil1D {
   int first;     // grid index of the stencil's first node
+  double r0;     // that node's offset from the particle, x_first - xp
   double w[3];   // weights of nodes first, first+1, first+2
   double dw[3];  // their derivatives d/dx
 };
@@ -52,6 +53,7 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
   const int c = static_cast<int>(cell);
   if (kind == ShapeKind::Linear) {
     s.first = c;
+    s.r0 = -frac * h;
     s.w[0] = 1.0 - frac;
     s.w[1] = frac;
     s.w[2] = 0.0;
@@ -61,6 +63,7 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
     return;
   }
   s.first = frac < 0.5 ? c - 1 : c;
+  s.r0 = origin + s.first * h - xp;
   for (int k = 0; k < 3; ++k) {
     const double r = xp - (origin + (s.first + k) * h);
     gimp_1d(r, h, lp, s.w[k], s.dw[k]);

@@ -10,14 +10,15 @@
 //   2. grid_update:    v0_i = p_i/m_i, v_i = v0_i + dt f_i/m_i, Geo-contact with
 //                      the rigid base where the material reaches it, boundary
 //                      conditions
-//   3. g2p:            v_p += FLIP/PIC blend
-//   4. p2g_momentum:   p_i = sum N m v_p(new)            (the MUSL remap)
+//   3. g2p:            APIC: v_p = sum N v_i and the affine velocity C_p;
+//                      or v_p += the PIC/FLIP blend
+//   4. p2g_momentum:   p_i = sum N m (v_p + C_p (x_i - x_p))   (the MUSL remap)
 //   5. remap_velocity: v_i = p_i/m_i and the mid-step vm_i = (v0_i + v_i)/2,
 //                      contact kinematics, boundary conditions
 //   6. velocity_gradient, displacement: L = sum v_i (x) grad N (its
 //                      volumetric part averaged per cell against locking),
 //                      step displacement dt sum N vm_i
-//   7. stress_update:  volume, Jaumann stress; then move
+//   7. stress_update:  volume, F, Jaumann stress; then move
 // MUSL rather than USL because the stress is computed from the remapped
 // velocity: at nodes with a tiny share of mass (free surface, a particle
 // entering a cell) v0 + dt f/m is spurious, and USL turns it into stress.
@@ -37,9 +38,15 @@ namespace runout {
 
 struct StepConfig {
   ShapeKind shape = ShapeKind::Gimp;
-  double lp = 0;                 // GIMP particle half-width h / (2 ppc)
-  double gx = 0, gy = 0;         // gravity
-  double flip = 0.99;            // PIC/FLIP blend
+  DomainKind domain = DomainKind::Deforming;
+  double lp = 0;                 // initial GIMP particle half-width h / (2 ppc)
+  double gx = 0, gy = 0;         // full gravity
+  double gravity_scale = 1;      // this step's share of it (gravity_factor)
+  double gravity_ramp = 0;       // [s], GravitySpec::ramp
+  TransferKind transfer = TransferKind::Flip;
+  double flip = 0.99;            // PIC/FLIP blend, TransferKind::PicFlip
+  double pic_time = 0;           // [s], TransferKind::Flip
+  double flip_step = 0.99;       // this step's FLIP share (flip_share)
   double min_node_mass = 0;      // nodes at or below this are not accelerated
   double damping = 0;            // Cundall local damping coefficient
   // Boundary conditions on the domain's sides; the domain spans global
@@ -55,10 +62,38 @@ struct StepConfig {
   double friction = 0;           // mu, Coulomb
 };
 
+// The largest Courant number a scene may ask for. Measured with FLIP and
+// GIMP (docs/convergence.md, "Courant limit"): the coarse case 2 runout at
+// 12 s moves 0.9 % from Courant 0.1 to 0.3, 2.3 % to 0.5, 6 % to 0.7 and
+// 23 % to 1.0; beyond 0.5 the time step is part of the answer. The other
+// transfers and linear shape functions are held to the same limit.
+inline double max_courant(ShapeKind, TransferKind) { return 0.5; }
+
 // Per-particle scratch of one step: the displacement, applied at the end.
 struct StepScratch {
   double *dx, *dy;
 };
+
+// The share of gravity acting at time t: all of it, or with a ramp of
+// length T > 0 the half cosine (1 - cos(pi t / T)) / 2, which starts and
+// ends with zero rate, so the slide is loaded without the shock of a sudden
+// start (the elastic waves of gravity switched on at once in a stress-free
+// body, which a soft clay yields under before it has its own weight).
+RUNOUT_HD inline double gravity_factor(double t, double ramp) {
+  if (!(ramp > 0.0) || t >= ramp) return 1.0;
+  return 0.5 * (1.0 - std::cos(3.14159265358979323846 * t / ramp));
+}
+
+// The FLIP share of a step of length dt. Flip: exp(-dt / T), so the PIC
+// share 1 - exp(-dt / T) relaxes the particle velocity towards the grid's
+// at the rate 1 / T whatever dt is (over a time t, exp(-t / T) is left,
+// however many steps it takes); T = 0: pure FLIP. PicFlip: the scene's
+// blend, fixed per step. APIC: unused.
+RUNOUT_HD inline double flip_share(TransferKind transfer, double blend, double pic_time,
+                                   double dt) {
+  if (transfer != TransferKind::Flip) return blend;
+  return pic_time > 0.0 ? std::exp(-dt / pic_time) : 1.0;
+}
 
 // P-wave speed sqrt(M / rho) at the current density plus the particle's
 // speed: the signal speed of the CFL condition dt = C h / max(c + |v|).
@@ -69,35 +104,79 @@ RUNOUT_HD inline double cfl_speed(const ParticleView& P, int p, const MaterialPa
 }
 
 // The particle's shape functions for the whole step: every stage evaluates
-// them at the start-of-step position, so they are computed once.
+// them at the start-of-step position, so they are computed once. lx, ly:
+// the half-widths of the particle's domain (domain_half_widths).
 struct Stencil2D {
   Stencil1D x, y;
+  double lx, ly;
 };
 
-RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, double xp, double yp,
-                                   Stencil2D& s) {
-  stencil_1d(c.shape, xp, g.ox, g.h, c.lp, s.x);
-  stencil_1d(c.shape, yp, g.oy, g.h, c.lp, s.y);
+// The half-widths of a particle's GIMP domain. Fixed: the initial square of
+// half-width lp (uGIMP). Deforming: the deformed square F [-lp, lp]^2 is
+// replaced by a rectangle with the aspect ratio of its bounding box,
+// bx = |F_xx| + |F_xy| by by = |F_yx| + |F_yy|, and with the particle's
+// current area 4 lp^2 J (J = V / V0): lx = lp sqrt(J bx / by), and ly
+// alike. Exact for a stretch along the axes; a rotation leaves the square;
+// a shear gamma widens it as sqrt(1 + gamma) only. This is the rectangular
+// form of convected GIMP (cpGIMP, Sadeghirad et al. 2011, whose
+// parallelogram it bounds), so a stretched particle's support still meets
+// its neighbours' and material that is only stretched does not separate
+// (the numerical fracture of uGIMP). Each half-width is capped at h / 2,
+// the widest domain a three-node stencil holds, as CPDI codes limit domain
+// size (Homel, Brannon and Guilkey 2016); the floor keeps gimp_1d finite.
+RUNOUT_HD inline void domain_half_widths(const ParticleView& P, int p, const StepConfig& c,
+                                         double h, double& lx, double& ly) {
+  lx = ly = c.lp;
+  if (c.domain == DomainKind::Fixed || c.shape == ShapeKind::Linear) return;
+  const double bx = std::fabs(P.fxx[p]) + std::fabs(P.fxy[p]);
+  const double by = std::fabs(P.fyx[p]) + std::fabs(P.fyy[p]);
+  const double J = P.vol[p] / P.vol0[p];
+  if (!(J > 0.0 && bx > 0.0 && by > 0.0)) return;  // the guards stop such a run
+  const double floor = 1e-3 * c.lp, cap = 0.5 * h;
+  lx = std::fmin(cap, std::fmax(floor, c.lp * std::sqrt(J * bx / by)));
+  ly = std::fmin(cap, std::fmax(floor, c.lp * std::sqrt(J * by / bx)));
 }
 
-// Visits the 3 x 3 nodes of a stencil: f(node, N, dN/dx, dN/dy).
+RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
+                                   int p, Stencil2D& s) {
+  domain_half_widths(P, p, c, g.h, s.lx, s.ly);
+  stencil_1d(c.shape, P.x[p], g.ox, g.h, s.lx, s.x);
+  stencil_1d(c.shape, P.y[p], g.oy, g.h, s.ly, s.y);
+}
+
+// Visits the 3 x 3 nodes of a stencil: f(node, N, dN/dx, dN/dy, rx, ry),
+// with (rx, ry) = x_i - x_p the node's offset from the particle.
 template <class F>
 RUNOUT_HD inline void for_each_node(const GridView& g, const Stencil2D& s, F&& f) {
   for (int b = 0; b < 3; ++b) {
+    const double ry = s.y.r0 + b * g.h;
     for (int a = 0; a < 3; ++a) {
       const int node = g.index(s.x.first + a, s.y.first + b);
-      f(node, s.x.w[a] * s.y.w[b], s.x.dw[a] * s.y.w[b], s.x.w[a] * s.y.dw[b]);
+      f(node, s.x.w[a] * s.y.w[b], s.x.dw[a] * s.y.w[b], s.x.w[a] * s.y.dw[b], s.x.r0 + a * g.h,
+        ry);
     }
   }
 }
 
+// The particle's velocity at offset (rx, ry) from it: v_p + C_p r, the
+// affine field APIC transfers (C = 0 under PIC/FLIP).
+struct AffineVelocity {
+  double vx, vy, cxx, cxy, cyx, cyy;
+  RUNOUT_HD double x(double rx, double ry) const { return vx + cxx * rx + cxy * ry; }
+  RUNOUT_HD double y(double rx, double ry) const { return vy + cyx * rx + cyy * ry; }
+};
+
+RUNOUT_HD inline AffineVelocity affine_velocity(const ParticleView& P, int p) {
+  return {P.vx[p], P.vy[p], P.cxx[p], P.cxy[p], P.cyx[p], P.cyy[p]};
+}
+
 // The gap between a particle's domain and the base: its signed distance to
-// the base less the half-extent of its square of half-width lp along the
-// normal, lp (|n_x| + |n_y|). Zero for a particle resting on the base,
-// negative for one pressed into it. lp = h / (2 ppc) is half the particle
-// spacing, so a linear-shape point stands for the same square.
-RUNOUT_HD inline double particle_gap(const StepConfig& c, const BasePoint& b) {
-  return b.d - c.lp * (std::fabs(b.nx) + std::fabs(b.ny));
+// the base less the half-extent of its rectangle of half-widths lx, ly
+// along the normal, lx |n_x| + ly |n_y|. Zero for a particle resting on the
+// base, negative for one pressed into it. lp = h / (2 ppc) is half the
+// particle spacing, so a linear-shape point stands for the same square.
+RUNOUT_HD inline double particle_gap(const Stencil2D& st, const BasePoint& b) {
+  return b.d - (st.lx * std::fabs(b.nx) + st.ly * std::fabs(b.ny));
 }
 
 // Stage 1. add(array, node, value) does array[node] += value and
@@ -109,7 +188,7 @@ template <class Add, class Lower>
 RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
                           const StepConfig& c, Add&& add, Lower&& lower) {
   const double m = P.mass[p], V = P.vol[p];
-  const double vx = P.vx[p], vy = P.vy[p];
+  const AffineVelocity v = affine_velocity(P, p);
   const double sxx = P.sxx[p], syy = P.syy[p], sxy = P.sxy[p];
   // Nodes on or inside the base (distance <= 0) are the only ones that read
   // the gap, and a particle reaches nodes at most h + lp away along x and y,
@@ -118,17 +197,17 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, con
   double gap = 0.0;
   if (c.base.kind != BaseKind::None) {
     const BasePoint b = locate_on_base(c.base, P.x[p], P.y[p]);
-    near_base = b.d < std::sqrt(2.0) * (g.h + c.lp);
-    gap = particle_gap(c, b);
+    near_base = b.d < std::sqrt(2.0) * (g.h + std::fmax(st.lx, st.ly));
+    gap = particle_gap(st, b);
   }
-  for_each_node(g, st, [&](int n, double N, double dNx, double dNy) {
+  for_each_node(g, st, [&](int n, double N, double dNx, double dNy, double rx, double ry) {
     if (N == 0.0 && dNx == 0.0 && dNy == 0.0) return;
     add(g.m, n, N * m);
     add(g.vol, n, N * V);
-    add(g.px, n, N * m * vx);
-    add(g.py, n, N * m * vy);
-    add(g.fx, n, -V * (sxx * dNx + sxy * dNy) + N * m * c.gx);
-    add(g.fy, n, -V * (sxy * dNx + syy * dNy) + N * m * c.gy);
+    add(g.px, n, N * m * v.x(rx, ry));
+    add(g.py, n, N * m * v.y(rx, ry));
+    add(g.fx, n, -V * (sxx * dNx + sxy * dNy) + N * m * c.gravity_scale * c.gx);
+    add(g.fy, n, -V * (sxy * dNx + syy * dNy) + N * m * c.gravity_scale * c.gy);
     if (near_base && N > 0.0) lower(g.gap, n, gap);
   });
 }
@@ -167,13 +246,12 @@ RUNOUT_HD inline bool base_contact_normal(const GridView& g, const StepConfig& c
 
 // The speed at which a base node's material closes its gap to the base
 // within the step, gap_i / dt; zero where it touches (a gap below the
-// rounding of the base's position). Zero on a no-slip base too: there,
-// letting separated material come back made the case 2 slide (soft clay,
-// no-slip) rattle at 5-10 % of its peak kinetic energy instead of coming
-// to rest (tests/test_reference_scenes.cpp), for a reason not yet found,
-// so a no-slip base removes all approach, as before.
-RUNOUT_HD inline double closing_speed(const GridView& g, const StepConfig& c, int n, double dt) {
-  if (c.interface == InterfaceKind::NoSlip) return 0.0;
+// rounding of the base's position). The same on every interface, so a
+// no-slip base is a frictional one whose limit is never reached: holding
+// approach at zero on a no-slip base instead made the coarse case 2 runout
+// grow from 24.9 m at Courant 0.05 to 39.2 m at 0.3 under FLIP, where the
+// frictional path gives 14.2 m at both (docs/convergence.md).
+RUNOUT_HD inline double closing_speed(const GridView& g, int n, double dt) {
   const double gap = g.gap[n];
   return gap > 1e-9 * g.h ? gap / dt : 0.0;
 }
@@ -193,10 +271,17 @@ RUNOUT_HD inline double closing_speed(const GridView& g, const StepConfig& c, in
 // share of the interface: a base node of a full row carries half a cell of
 // volume, h^2 / 2, and so h of interface, and a partly covered one its part.
 // Returns the tangential force of the base on the slide along the base
-// direction (+s): m dv / dt, negative while it resists down-slope motion.
-RUNOUT_HD inline double geo_contact(const StepConfig& c, double m, double vol, double h,
-                                    double dt, double closing, double nx, double ny, double& vx,
-                                    double& vy) {
+// direction (+s), m dv / dt, negative while it resists down-slope motion,
+// and whether the tangential velocity was removed whole (the node sticks:
+// always on a no-slip base).
+struct ContactResult {
+  double force;
+  bool stuck;
+};
+
+RUNOUT_HD inline ContactResult geo_contact(const StepConfig& c, double m, double vol, double h,
+                                           double dt, double closing, double nx, double ny,
+                                           double& vx, double& vy) {
   const double vn = vx * nx + vy * ny;
   const double dvn = vn < -closing ? -closing - vn : 0.0;
   vx += dvn * nx;
@@ -209,19 +294,22 @@ RUNOUT_HD inline double geo_contact(const StepConfig& c, double m, double vol, d
   } else if (c.interface == InterfaceKind::Coulomb) {
     limit = c.friction * dvn;
   }
+  const bool stuck = std::fabs(vt) <= limit;
   const double dvt = std::fmin(std::fabs(vt), limit) * (vt < 0.0 ? -1.0 : 1.0);
   vx -= dvt * tx;
   vy -= dvt * ty;
-  return -m * dvt / dt;
+  return {-m * dvt / dt, stuck};
 }
 
 // The kinematic part of Geo-contact, for velocities that carry no impulse
 // of their own (the mid-step and remapped velocities): no approach beyond
-// closing the gap, and no slip on a no-slip base.
-RUNOUT_HD inline void contact_kinematics(const StepConfig& c, double closing, double nx,
-                                         double ny, double& vx, double& vy) {
+// closing the gap, and no slip where grid_update held the node still, so a
+// frictional base whose limit is not reached strains the slide as a
+// no-slip one does.
+RUNOUT_HD inline void contact_kinematics(bool stuck, double closing, double nx, double ny,
+                                         double& vx, double& vy) {
   const double vn = vx * nx + vy * ny;
-  if (c.interface == InterfaceKind::NoSlip) {
+  if (stuck) {
     const double kept = std::fmax(vn, -closing);
     vx = kept * nx;
     vy = kept * ny;
@@ -239,7 +327,7 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
     g.v0x[n] = g.v0y[n] = g.vx[n] = g.vy[n] = g.fbase[n] = 0.0;
     return;
   }
-  const double v0x = g.px[n] / m, v0y = g.py[n] / m;
+  double v0x = g.px[n] / m, v0y = g.py[n] / m;
   double fx = g.fx[n], fy = g.fy[n];
   if (c.damping > 0.0) {
     fx -= c.damping * std::fabs(fx) * (v0x > 0.0 ? 1.0 : (v0x < 0.0 ? -1.0 : 0.0));
@@ -248,8 +336,27 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
   double vx = v0x + dt * fx / m, vy = v0y + dt * fy / m;
   double nx, ny;
   g.fbase[n] = 0.0;
-  if (base_contact_normal(g, c, n, nx, ny))
-    g.fbase[n] = geo_contact(c, m, g.vol[n], g.h, dt, closing_speed(g, c, n, dt), nx, ny, vx, vy);
+  g.stuck[n] = 0.0;
+  if (base_contact_normal(g, c, n, nx, ny)) {
+    const ContactResult r =
+        geo_contact(c, m, g.vol[n], g.h, dt, closing_speed(g, n, dt), nx, ny, vx, vy);
+    g.fbase[n] = r.force;
+    if (r.stuck) {
+      // The node's material is held still, and so is its start velocity:
+      // that is a projection of particle velocities from up to a cell above
+      // the base, and left in, FLIP would take it off those particles at
+      // every step, a damping at the rate 1 / dt (the Courant dependence of
+      // no-slip runouts, docs/convergence.md). The base then acts through
+      // the strain rate it imposes, with the reaction -f_t, as a fixed
+      // node does in CB-Geo mpm and MPM-Geomechanics.
+      const double tx = ny, ty = -nx;
+      const double v0t = v0x * tx + v0y * ty;
+      v0x -= v0t * tx;
+      v0y -= v0t * ty;
+      g.fbase[n] = -(fx * tx + fy * ty);
+      g.stuck[n] = 1.0;
+    }
+  }
   constrain(g, c, n, vx, vy);
   g.v0x[n] = v0x;
   g.v0y[n] = v0y;
@@ -257,30 +364,67 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
   g.vy[n] = vy;
 }
 
-// Stage 3. FLIP carries the particle's own velocity plus the grid's change
-// (little dissipation), PIC takes the grid velocity (stable, dissipative).
+// Stage 3. APIC (Jiang et al. 2015): the particle takes the grid velocity
+// v_p = sum N v_i and its affine part C_p = B_p D_p^-1, with
+// B_p = sum N v_i r^T and D_p = sum N r r^T (r = x_i - x_p), which the
+// next transfers carry to the grid. An affine velocity field goes through
+// the round trip unchanged, and with it rigid rotation and uniform shear;
+// only the part of the field the grid cannot hold is filtered, so there is
+// no fixed share of velocity lost per step and no null-space noise kept.
+// D is diagonal (GIMP and linear weights reproduce linear fields, so
+// sum N r = 0). A linear-shape particle on a node has D_xx = 0, where
+// B_xx / D_xx tends to the cell gradient sum v_i dN_i/dx; that is used
+// where D is degenerate.
+// PIC/FLIP: FLIP carries the particle's own velocity plus the grid's change
+// (little dissipation), PIC takes the grid velocity; a per-step blend damps
+// at a rate (1 - flip) / dt, which grows as the step shrinks.
 RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
                           const StepConfig& c) {
   double pic_x = 0, pic_y = 0, dvx = 0, dvy = 0;
-  for_each_node(g, st, [&](int n, double N, double, double) {
-    pic_x += N * g.vx[n];
-    pic_y += N * g.vy[n];
-    dvx += N * (g.vx[n] - g.v0x[n]);
-    dvy += N * (g.vy[n] - g.v0y[n]);
+  double bxx = 0, bxy = 0, byx = 0, byy = 0, dxx = 0, dyy = 0;
+  double gxx = 0, gxy = 0, gyx = 0, gyy = 0;
+  for_each_node(g, st, [&](int n, double N, double dNx, double dNy, double rx, double ry) {
+    const double vx = g.vx[n], vy = g.vy[n];
+    pic_x += N * vx;
+    pic_y += N * vy;
+    dvx += N * (vx - g.v0x[n]);
+    dvy += N * (vy - g.v0y[n]);
+    bxx += N * vx * rx;
+    bxy += N * vx * ry;
+    byx += N * vy * rx;
+    byy += N * vy * ry;
+    dxx += N * rx * rx;
+    dyy += N * ry * ry;
+    gxx += vx * dNx;
+    gxy += vx * dNy;
+    gyx += vy * dNx;
+    gyy += vy * dNy;
   });
-  P.vx[p] = c.flip * (P.vx[p] + dvx) + (1.0 - c.flip) * pic_x;
-  P.vy[p] = c.flip * (P.vy[p] + dvy) + (1.0 - c.flip) * pic_y;
+  if (c.transfer == TransferKind::Apic) {
+    const double degenerate = 1e-12 * g.h * g.h;
+    const bool use_x = dxx > degenerate, use_y = dyy > degenerate;
+    P.vx[p] = pic_x;
+    P.vy[p] = pic_y;
+    P.cxx[p] = use_x ? bxx / dxx : gxx;
+    P.cyx[p] = use_x ? byx / dxx : gyx;
+    P.cxy[p] = use_y ? bxy / dyy : gxy;
+    P.cyy[p] = use_y ? byy / dyy : gyy;
+    return;
+  }
+  P.vx[p] = c.flip_step * (P.vx[p] + dvx) + (1.0 - c.flip_step) * pic_x;
+  P.vy[p] = c.flip_step * (P.vy[p] + dvy) + (1.0 - c.flip_step) * pic_y;
 }
 
 // Stage 4: the MUSL remap of the updated particle momentum.
 template <class Add>
 RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D& st,
                                    const GridView& g, Add&& add) {
-  const double mvx = P.mass[p] * P.vx[p], mvy = P.mass[p] * P.vy[p];
-  for_each_node(g, st, [&](int n, double N, double, double) {
+  const double m = P.mass[p];
+  const AffineVelocity v = affine_velocity(P, p);
+  for_each_node(g, st, [&](int n, double N, double, double, double rx, double ry) {
     if (N == 0.0) return;
-    add(g.px, n, N * mvx);
-    add(g.py, n, N * mvy);
+    add(g.px, n, N * m * v.x(rx, ry));
+    add(g.py, n, N * m * v.y(rx, ry));
   });
 }
 
@@ -307,9 +451,10 @@ RUNOUT_HD inline void remap_velocity(const GridView& g, int n, const StepConfig&
   double vmx = 0.5 * (g.v0x[n] + vx), vmy = 0.5 * (g.v0y[n] + vy);
   double nx, ny;
   if (base_contact_normal(g, c, n, nx, ny)) {
-    const double closing = closing_speed(g, c, n, dt);
-    contact_kinematics(c, closing, nx, ny, vx, vy);
-    contact_kinematics(c, closing, nx, ny, vmx, vmy);
+    const double closing = closing_speed(g, n, dt);
+    const bool stuck = g.stuck[n] != 0.0;
+    contact_kinematics(stuck, closing, nx, ny, vx, vy);
+    contact_kinematics(stuck, closing, nx, ny, vmx, vmy);
   }
   constrain(g, c, n, vx, vy);
   constrain(g, c, n, vmx, vmy);
@@ -327,7 +472,7 @@ struct VelocityGradient {
 // Stage 6a: L from the remapped velocity.
 RUNOUT_HD inline VelocityGradient velocity_gradient(const Stencil2D& st, const GridView& g) {
   VelocityGradient L{0, 0, 0, 0};
-  for_each_node(g, st, [&](int n, double, double dNx, double dNy) {
+  for_each_node(g, st, [&](int n, double, double dNx, double dNy, double, double) {
     L.xx += g.vx[n] * dNx;
     L.xy += g.vx[n] * dNy;
     L.yx += g.vy[n] * dNx;
@@ -340,7 +485,7 @@ RUNOUT_HD inline VelocityGradient velocity_gradient(const Stencil2D& st, const G
 RUNOUT_HD inline void displacement(int p, const Stencil2D& st, const GridView& g, double dt,
                                    const StepScratch& s) {
   double mid_x = 0, mid_y = 0;
-  for_each_node(g, st, [&](int n, double N, double, double) {
+  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
     mid_x += N * g.vmx[n];
     mid_y += N * g.vmy[n];
   });
@@ -364,7 +509,8 @@ RUNOUT_HD inline void set_volumetric_rate(VelocityGradient& L, double trace) {
   L.yy += shift;
 }
 
-// Stage 7. Volume by J = det(I + dt L); stress rotated with the spin
+// Stage 7. Volume by J = det(I + dt L), F by F <- (I + dt L) F (forward
+// Euler on dF/dt = L F, consistent with J); stress rotated with the spin
 // W = skew(L) (Jaumann rate) and then updated by the material with the
 // strain increment dt sym(L). gamma_dot = sqrt((D_xx - D_yy)^2 + 4 D_xy^2),
 // D = sym(L): the largest in-plane engineering shear strain rate (twice the
@@ -378,6 +524,11 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Veloci
                                       const StepScratch& s) {
   const double J = (1.0 + dt * L.xx) * (1.0 + dt * L.yy) - dt * dt * L.xy * L.yx;
   P.vol[p] *= J;
+  const double fxx = P.fxx[p], fxy = P.fxy[p], fyx = P.fyx[p], fyy = P.fyy[p];
+  P.fxx[p] = fxx + dt * (L.xx * fxx + L.xy * fyx);
+  P.fxy[p] = fxy + dt * (L.xx * fxy + L.xy * fyy);
+  P.fyx[p] = fyx + dt * (L.yx * fxx + L.yy * fyx);
+  P.fyy[p] = fyy + dt * (L.yx * fxy + L.yy * fyy);
 
   const double w = 0.5 * (L.xy - L.yx);  // spin W_xy
   const double sxx = P.sxx[p], syy = P.syy[p], sxy = P.sxy[p];
