@@ -102,6 +102,7 @@ struct Hold {
 // A held block, run with PIC so that the elastic shear of the sudden slope
 // load rings down. A sliding block would move metres in those two seconds.
 Hold hold(Scene s) {
+  s.solver.transfer = TransferKind::PicFlip;
   s.solver.flip = 0.0;
   Simulation sim = start(s);
   sim.advance_to(3.0);

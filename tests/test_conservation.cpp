@@ -20,6 +20,7 @@ Simulation random_block(ShapeKind shape, double flip, double h = 0.5) {
   Scene s = fixtures::block_scene({3.0, 3.0}, {9.0, 6.0}, {0.0, 0.0}, {12.0, 9.0}, h, 2,
                                   1500.0, 1e6, 0.3);
   s.grid.shape = shape;
+  s.solver.transfer = TransferKind::PicFlip;
   s.solver.flip = flip;
   s.solver.mass_threshold = 0.0;
   Simulation sim(s);

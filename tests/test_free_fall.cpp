@@ -13,8 +13,9 @@ using namespace runout;
 
 namespace {
 
-void check_free_fall(ShapeKind shape, double flip) {
+void check_free_fall(ShapeKind shape, TransferKind transfer, double flip = 1.0) {
   Scene s = fixtures::free_fall_scene(shape);
+  s.solver.transfer = transfer;
   s.solver.flip = flip;
   Simulation sim(s);
   const double t = fixtures::kFreeFallTime;
@@ -33,6 +34,15 @@ void check_free_fall(ShapeKind shape, double flip) {
 
 }  // namespace
 
-TEST(FreeFall, GimpFlipLandsOnTheParabola) { check_free_fall(ShapeKind::Gimp, 0.99); }
-TEST(FreeFall, GimpPicLandsOnTheParabola) { check_free_fall(ShapeKind::Gimp, 0.0); }
-TEST(FreeFall, LinearLandsOnTheParabola) { check_free_fall(ShapeKind::Linear, 1.0); }
+TEST(FreeFall, GimpFlipLandsOnTheParabola) { check_free_fall(ShapeKind::Gimp, TransferKind::Flip); }
+TEST(FreeFall, GimpBlendLandsOnTheParabola) {
+  check_free_fall(ShapeKind::Gimp, TransferKind::PicFlip, 0.99);
+}
+TEST(FreeFall, GimpPicLandsOnTheParabola) {
+  check_free_fall(ShapeKind::Gimp, TransferKind::PicFlip, 0.0);
+}
+TEST(FreeFall, GimpApicLandsOnTheParabola) { check_free_fall(ShapeKind::Gimp, TransferKind::Apic); }
+TEST(FreeFall, LinearLandsOnTheParabola) { check_free_fall(ShapeKind::Linear, TransferKind::Flip); }
+TEST(FreeFall, LinearApicLandsOnTheParabola) {
+  check_free_fall(ShapeKind::Linear, TransferKind::Apic);
+}

@@ -318,6 +318,12 @@ INSTANTIATE_TEST_SUITE_P(
                   "must be greater than grid.min"},
         ErrorCase{"OutputAfterEnd", 12, 12, "output_interval = 2.0", 12,
                   "time.output_interval", "must be <= time.end"},
+        ErrorCase{"CourantAboveTheStableLimit", 12, 12, "output_interval = 0.1\ncourant = 0.6", 13,
+                  "time.courant", "must be <= 0.5 with shape gimp and transfer flip (got 0.6)"},
+        ErrorCase{"UnknownTransfer", 12, 12, "output_interval = 0.1\n[solver]\ntransfer = \"xpic\"",
+                  14, "solver.transfer", "xpic"},
+        ErrorCase{"NegativeGravityRamp", 12, 12, "output_interval = 0.1\n[gravity]\nramp = -1.0",
+                  14, "gravity.ramp", ">= 0"},
         ErrorCase{"CourantZero", 12, 12, "output_interval = 0.1\ncourant = 0", 13, "time.courant",
                   "must be in (0, 1]"},
         ErrorCase{"UnknownBoundaryKind", 13, 13, "[boundary]\nleft = \"open\"\n", 14,
@@ -445,6 +451,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.grid.min, b.grid.min);
   EXPECT_EQ(a.grid.max, b.grid.max);
   EXPECT_EQ(a.grid.shape, b.grid.shape);
+  EXPECT_EQ(a.grid.domain, b.grid.domain);
   EXPECT_EQ(a.grid.ppc, b.grid.ppc);
   EXPECT_EQ(a.boundary.left, b.boundary.left);
   EXPECT_EQ(a.boundary.right, b.boundary.right);
@@ -457,7 +464,10 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.time.rest_duration, b.time.rest_duration);
   EXPECT_EQ(a.gravity.vector, b.gravity.vector);
   EXPECT_EQ(a.gravity.slope_angle_deg, b.gravity.slope_angle_deg);
+  EXPECT_EQ(a.gravity.ramp, b.gravity.ramp);
+  EXPECT_EQ(a.solver.transfer, b.solver.transfer);
   EXPECT_EQ(a.solver.flip, b.solver.flip);
+  EXPECT_EQ(a.solver.pic_cells, b.solver.pic_cells);
   EXPECT_EQ(a.solver.mass_threshold, b.solver.mass_threshold);
   EXPECT_EQ(a.solver.damping, b.solver.damping);
   EXPECT_EQ(a.solver.volumetric_smoothing, b.solver.volumetric_smoothing);
@@ -506,12 +516,13 @@ TEST(SceneWriter, EveryNonDefaultValueRoundTrips) {
   Scene s = parse_scene(
       "[scene]\nname = \"odd \\\"one\\\"\"\ndescription = \"tab\\there\\nnewline\"\n"
       "[grid]\ncell_size = 0.1\nmin = [-1.3, 0.7]\nmax = [7.77, 3.33]\n"
-      "shape = \"linear\"\nppc = 3\n"
+      "shape = \"linear\"\ndomain = \"fixed\"\nppc = 3\n"
       "[boundary]\nleft = \"free\"\nright = \"fixed\"\nbottom = \"free\"\ntop = \"fixed\"\n"
-      "[time]\nend = 3\noutput_interval = 0.1\ncourant = 0.7\nrest_fraction = 0.003\n"
+      "[time]\nend = 3\noutput_interval = 0.1\ncourant = 0.45\nrest_fraction = 0.003\n"
       "rest_duration = 0.7\n"
-      "[gravity]\nmagnitude = 9.80665\nslope_angle = -13.75\n"
-      "[solver]\nflip = 0.5\nmass_threshold = 1e-7\ndamping = 0.1\n"
+      "[gravity]\nmagnitude = 9.80665\nslope_angle = -13.75\nramp = 0.75\n"
+      "[solver]\ntransfer = \"pic_flip\"\nflip = 0.5\npic_cells = 12.5\nmass_threshold = 1e-7\n"
+      "damping = 0.1\n"
       "[[material]]\nname = \"a\"\ndensity = 525\nyoungs_modulus = 1.5e6\npoisson_ratio = -0.2\n"
       "model = \"tresca\"\nsu0 = 15e3\nsensitivity = 40\nxi95 = 45\neta = 0.0167\n"
       "rate_exponent = 0.5\nreference_rate = 0.3\nstrength_form = \"additive\"\n"
