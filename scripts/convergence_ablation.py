@@ -28,9 +28,10 @@ SCENES = {
 
 # variant name -> {(table, key): value as TOML text}
 VARIANTS = {
-    "default (APIC, deforming domains)": {},
-    "PIC/FLIP 0.99": {("solver", "transfer"): '"pic_flip"', ("solver", "flip"): "0.99"},
-    "PIC/FLIP 1.0 (FLIP)": {("solver", "transfer"): '"pic_flip"', ("solver", "flip"): "1.0"},
+    "default (FLIP, PIC share at 50 cell crossings)": {},
+    "pure FLIP": {("solver", "pic_cells"): "0"},
+    "APIC": {("solver", "transfer"): '"apic"'},
+    "per-step blend, flip 0.99": {("solver", "transfer"): '"pic_flip"', ("solver", "flip"): "0.99"},
     "fixed domains (uGIMP)": {("grid", "domain"): '"fixed"'},
     "no volumetric smoothing": {("solver", "volumetric_smoothing"): "false"},
     "gravity ramp 0.5 s": {("gravity", "ramp"): "0.5"},

@@ -1,0 +1,129 @@
+// Runouts that do not depend on the numerics (docs/convergence.md):
+// - the time step: the column collapse and coarse case 2 run out within 2 %
+//   of each other at Courant 0.1, 0.2 and 0.3;
+// - energy: an elastic bar vibrating in its first mode keeps its total
+//   energy within 1 % over 10 periods with the default transfer, where PIC
+//   loses most of it;
+// - mesh convergence of the non-softening cases 2 and 3 at 1, 0.5 and
+//   0.25 m cells: the runout differences shrink, with the observed order
+//   printed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "runout/diagnostics.hpp"
+#include "runout/morphology.hpp"
+#include "runout/scene_parser.hpp"
+#include "runout/simulation.hpp"
+#include "scene_builders.hpp"
+
+using namespace runout;
+
+namespace {
+
+Scene reference(const std::string& name) {
+  return load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/" + name + ".toml");
+}
+
+double toe(const Simulation& sim) {
+  return measure_slide(sim.particles(), sim.base().view(), sim.particle_spacing()).toe_s;
+}
+
+// Toe runout at time t.
+double runout_at(Scene s, double t) {
+  Simulation sim(s);
+  const double start = toe(sim);
+  sim.advance_to(t);
+  return toe(sim) - start;
+}
+
+double spread(const std::vector<double>& v) {
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return (*hi - *lo) / *lo;
+}
+
+std::vector<double> runouts_over_courant(Scene s, double t) {
+  std::vector<double> out;
+  for (double courant : {0.1, 0.2, 0.3}) {
+    s.time.courant = courant;
+    out.push_back(runout_at(s, t));
+    std::printf("Courant %.1f: runout %.4f m\n", courant, out.back());
+  }
+  return out;
+}
+
+// Elastic strain energy of the particles, from their stress through the
+// plane-strain compliance: w = (s:s - nu/(1+nu) tr(s)^2) / (4 G) per volume.
+double strain_energy(const Particles& P, double E, double nu) {
+  const double G = E / (2.0 * (1.0 + nu));
+  double W = 0;
+  for (int p = 0; p < P.size(); ++p) {
+    const double tr = P.sxx[p] + P.syy[p] + P.szz[p];
+    const double ss = P.sxx[p] * P.sxx[p] + P.syy[p] * P.syy[p] + P.szz[p] * P.szz[p] +
+                      2.0 * P.sxy[p] * P.sxy[p];
+    W += P.vol[p] * (ss - nu / (1.0 + nu) * tr * tr) / (4.0 * G);
+  }
+  return W;
+}
+
+// Total energy of a fixed-free bar released in its first mode, as a
+// fraction of the initial, after 10 periods.
+double bar_energy_kept(TransferKind transfer, double flip) {
+  const double L = 25.0, E = 100.0, rho = 1.0, h = 0.5, v0 = 0.01, nu = 0.0;
+  Scene s = fixtures::block_scene({0.0, 0.0}, {L, h}, {0.0, 0.0}, {2.0 * L, h}, h, 2, rho, E, nu);
+  s.boundary = {BoundaryKind::Fixed, BoundaryKind::Free, BoundaryKind::Slip, BoundaryKind::Slip};
+  s.solver.transfer = transfer;
+  s.solver.flip = flip;
+  Simulation sim(s);
+  Particles& P = sim.particles();
+  for (int p = 0; p < P.size(); ++p) P.vx[p] = v0 * std::sin(M_PI * P.x[p] / (2.0 * L));
+  const auto energy = [&] { return particle_totals(P).kinetic_energy + strain_energy(P, E, nu); };
+  const double initial = energy();
+  sim.advance_to(10.0 * 4.0 * L / std::sqrt(E / rho));
+  return energy() / initial;
+}
+
+}  // namespace
+
+TEST(Convergence, ColumnCollapseRunoutDoesNotMoveWithTheCourantNumber) {
+  const std::vector<double> r = runouts_over_courant(reference("column_collapse_tresca"), 1.0);
+  EXPECT_GT(r[0], 0.2);  // it collapses: 0.39 m
+  EXPECT_LT(spread(r), 0.02);
+}
+
+TEST(Convergence, CoarseCase2RunoutDoesNotMoveWithTheCourantNumber) {
+  Scene s = reference("case2_elongation_noslip");
+  apply_overrides(s, 0.5, 2);
+  const std::vector<double> r = runouts_over_courant(s, 12.0);
+  EXPECT_GT(r[0], 5.0);
+  EXPECT_LT(spread(r), 0.02);
+}
+
+TEST(Convergence, ElasticBarKeepsItsEnergyWithTheDefaultTransferAndPicLosesIt) {
+  const double flip = bar_energy_kept(TransferKind::Flip, 1.0);
+  const double apic = bar_energy_kept(TransferKind::Apic, 1.0);
+  const double pic = bar_energy_kept(TransferKind::PicFlip, 0.0);
+  std::printf("bar energy after 10 periods: default %.5f, APIC %.5f, PIC %.5f\n", flip, apic, pic);
+  EXPECT_NEAR(flip, 1.0, 0.01);
+  EXPECT_LT(pic, 0.5);
+}
+
+TEST(Convergence, NonSofteningCasesConvergeWithTheCellSize) {
+  for (const char* name : {"case2_elongation_noslip", "case3_block_sliding"}) {
+    std::vector<double> r;
+    for (double cell : {1.0, 0.5, 0.25}) {
+      Scene s = reference(name);
+      apply_overrides(s, cell, 2);
+      r.push_back(runout_at(s, 10.0));
+    }
+    const double d1 = std::fabs(r[0] - r[1]), d2 = std::fabs(r[1] - r[2]);
+    std::printf("%s at 10 s: runout %.3f, %.3f, %.3f m at 1, 0.5, 0.25 m cells; observed order "
+                "%.2f\n",
+                name, r[0], r[1], r[2], std::log2(d1 / d2));
+    EXPECT_LT(d2, d1) << name;
+    EXPECT_LT(d2, 0.1 * r[2]) << name;
+  }
+}
