@@ -81,6 +81,25 @@ def columns(table):
             for c in range(table.GetNumberOfColumns())}
 
 
+def check_array_defaults(simple, reader):
+    expected = {"RunoutPlasticStrain": {"StrainArray": "plastic_shear_strain"},
+                "RunoutShearBands": {"StrainArray": "plastic_shear_strain"},
+                "RunoutHorstsAndGrabens": {"StrainArray": "plastic_shear_strain",
+                                           "DisplacementArray": "displacement"},
+                "RunoutMorphology": {"VelocityArray": "velocity", "MassArray": "mass",
+                                     "InitialPositionArray": "initial_position"},
+                "RunoutMorphologyHistory": {"VelocityArray": "velocity", "MassArray": "mass",
+                                            "InitialPositionArray": "initial_position"}}
+    for function, properties in expected.items():
+        f = getattr(simple, function)(Input=reader)
+        for name, array in properties.items():
+            value = list(f.GetPropertyValue(name))
+            if value != ["POINTS", array]:
+                fail(f"{function}.{name} is {value} before the reader ran, not {array}")
+        simple.Delete(f)
+    print("array selections default to the engine's arrays before the reader runs")
+
+
 def check_history(servermanager, history, times):
     history.UpdatePipeline()
     table = servermanager.Fetch(history)
@@ -98,6 +117,13 @@ def check_history(servermanager, history, times):
         fail(f"negative runout {runout}")
     if any(b < a for a, b in zip(toe, toe[1:])) or not toe[-1] > toe[0]:
         fail(f"the toe does not advance: {toe}")
+    # Port 1, the chart's: the lengths alone, with their unit in the name.
+    lengths = columns(servermanager.Fetch(history, idx=1))
+    if sorted(lengths) != sorted(["Time", "toe (m)", "rear (m)", "runout (m)", "length (m)",
+                                  "max_thickness (m)"]):
+        fail(f"history port 1 columns {sorted(lengths)}")
+    if [v.ToDouble() for v in lengths["toe (m)"]] != toe:
+        fail("history port 1's toe differs from port 0's")
     print("history:", ", ".join(f"t={t:g} toe={x:.3f}" for t, x in zip(time, toe)))
     return runout
 
@@ -130,9 +156,10 @@ def main():
         pvd = run_engine(folder)
         simple.LoadPlugin(plugin, remote=False)
         reader = simple.PVDReader(FileName=pvd)
-        # Array selectors (Strain Array) take their default from the input's
-        # arrays, which ParaView knows once the reader has run, as the GUI's
-        # Apply does before a filter can be added.
+        # The array selectors keep the engine's array names as their
+        # defaults even on a reader that has not run yet (they came out as
+        # '0' when the domain, still empty, reset them).
+        check_array_defaults(simple, reader)
         reader.UpdatePipeline()
         times = reader.TimestepValues
         if len(times) < 3:

@@ -577,9 +577,11 @@ TEST(PlasticStrainFilter, IncrementFromThePreviousStepInAnyOrder) {
     EXPECT_DOUBLE_EQ(normalised[4], t < 1 ? 0.0 : 1.0);
     EXPECT_DOUBLE_EQ(normalised[0], t < 1 ? 0.0 : 0.2);
   }
-  // 3 (after 2), 0, 1 (0 cached), 2, 3 (cached before them), 1.5 is step 1
-  // (after 0, no longer cached): no frame read twice in a row needlessly.
-  EXPECT_EQ(source->Delivered, (std::vector<double>{2, 3, 0, 1, 2, 3, 0, 1}));
+  // The survey of the grid's extent reads every step once, keeping the
+  // strains of 2 for 3 and ending on 3 itself; then 0, 1 (0 cached), 2, 3
+  // (cached before them), 1.5 is step 1 (after 0, no longer cached): no
+  // frame read twice in a row needlessly.
+  EXPECT_EQ(source->Delivered, (std::vector<double>{0, 1, 2, 3, 0, 1, 2, 3, 0, 1}));
 
   // Another strain array: the strains cached from the first are not used.
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "doubled");
@@ -587,6 +589,53 @@ TEST(PlasticStrainFilter, IncrementFromThePreviousStepInAnyOrder) {
   const std::vector<double> increment =
       by_id(vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0)), "plastic_strain_increment");
   for (size_t id = 0; id < 5; ++id) EXPECT_DOUBLE_EQ(increment[id], 2 * rate[id]) << id;
+}
+
+TEST(PlasticStrainFilter, SeriesGridHasOneExtentDeclaredInRequestInformation) {
+  // A slide that lengthens: its particles spread with the time.
+  vtkNew<SeriesSource> source;
+  source->Times = {0.0, 1.0, 2.0};
+  source->Frame = [](double t) {
+    auto frame = strain_frame(t);
+    vtkPoints* points = frame->GetPoints();
+    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i) {
+      double p[3];
+      points->GetPoint(i, p);
+      points->SetPoint(i, p[0] * (1 + t), p[1] + 0.3 * t, 0.0);
+    }
+    return frame;
+  };
+  vtkNew<vtkRunoutPlasticStrain> filter;
+  filter->SetGridSpacing(0.5);
+  filter->SetInputConnection(source->GetOutputPort());
+
+  // The last frame reaches x = 12, y = 0.6; the first starts at x = y = 0.
+  const int expected[6] = {0, 24, 0, 2, 0, 0};
+  for (const double t : {0.0, 2.0, 1.0}) {
+    filter->UpdateTimeStep(t);
+    int extent[6];
+    filter->GetGridOutput()->GetExtent(extent);
+    double origin[3];
+    filter->GetGridOutput()->GetOrigin(origin);
+    for (int k = 0; k < 6; ++k) EXPECT_EQ(extent[k], expected[k]) << "t " << t << " k " << k;
+    EXPECT_DOUBLE_EQ(origin[0], 0.0);
+    EXPECT_DOUBLE_EQ(origin[1], 0.0);
+  }
+  // Once surveyed, RequestInformation declares it (ParaView's image
+  // representations ask for it before the data pass).
+  filter->Modified();
+  filter->UpdateInformation();
+  int whole[6];
+  filter->GetOutputInformation(1)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(whole[k], expected[k]) << k;
+  // Another spacing: the same box on the new lattice, still in RequestInformation.
+  filter->SetGridSpacing(1.0);
+  filter->UpdateInformation();
+  filter->GetOutputInformation(1)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  EXPECT_EQ(whole[1], 12);
+  EXPECT_EQ(whole[3], 1);
+  // The survey reads each step once, however often the time changes.
+  EXPECT_EQ(std::count(source->Delivered.begin(), source->Delivered.end(), 2.0), 2);
 }
 
 TEST(PlasticStrainFilter, FramesFedOneByOneUseTheirTimeValue) {

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace runout::filters {
@@ -49,12 +50,13 @@ struct ParticleFrame {
 };
 
 // The frame in the engine's types; "" or the error.
-std::string read_particle_frame(vtkPointSet* frame, ParticleFrame& out) {
+std::string read_particle_frame(vtkPointSet* frame, const MorphologyArrays& arrays,
+                                ParticleFrame& out) {
   vtkDataArray *velocity, *mass, *initial;
   for (const std::string& problem :
-       {points_problem(frame), read_point_array(frame, "velocity", 3, velocity),
-        read_point_array(frame, "mass", 1, mass),
-        read_point_array(frame, "initial_position", 3, initial)})
+       {points_problem(frame), read_point_array(frame, arrays.velocity.c_str(), 3, velocity),
+        read_point_array(frame, arrays.mass.c_str(), 1, mass),
+        read_point_array(frame, arrays.initial_position.c_str(), 3, initial)})
     if (!problem.empty()) return problem;
   out.spacing = particle_spacing_of(frame);
   if (!(out.spacing > 0))
@@ -84,7 +86,8 @@ std::string read_particle_frame(vtkPointSet* frame, ParticleFrame& out) {
   p.y0 = component_of(initial, 1);
   // measure_slide divides by the masses.
   for (const double m : p.mass)
-    if (!(m > 0 && std::isfinite(m))) return "The point array \"mass\" must be > 0 everywhere.";
+    if (!(m > 0 && std::isfinite(m)))
+      return "The point array \"" + arrays.mass + "\" (the mass) must be > 0 everywhere.";
   return "";
 }
 
@@ -151,11 +154,22 @@ std::string bins_problem(const runout::Particles& p, double width) {
 
 }  // namespace
 
-std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out) {
+MorphologyArrays selected_morphology_arrays(vtkAlgorithm* algorithm) {
+  MorphologyArrays arrays;
+  for (auto [index, name] : {std::pair<int, std::string*>{0, &arrays.velocity},
+                             {1, &arrays.mass}, {2, &arrays.initial_position}}) {
+    const std::string selected = selected_array_name(algorithm, index);
+    if (!selected.empty()) *name = selected;
+  }
+  return arrays;
+}
+
+std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out,
+                              const MorphologyArrays& arrays) {
   out = FrameMorphology();
   if (frame->GetNumberOfPoints() == 0) return "";
   ParticleFrame particles;
-  std::string error = read_particle_frame(frame, particles);
+  std::string error = read_particle_frame(frame, arrays, particles);
   if (error.empty())
     error = bins_problem(particles.particles,
                          std::min(bin_spacings, runout::kMainBodyBinSpacings) * particles.spacing);

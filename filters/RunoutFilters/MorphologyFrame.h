@@ -7,18 +7,31 @@
 
 #include "MorphologyRules.h"
 
+class vtkAlgorithm;
 class vtkPointSet;
 class vtkTable;
 
 namespace runout::filters {
 
+// The point arrays the morphology reads, by name: the filters' array
+// selections (input arrays 0, 1, 2), the engine's names by default.
+struct MorphologyArrays {
+  std::string velocity = "velocity";
+  std::string mass = "mass";
+  std::string initial_position = "initial_position";
+};
+
+// The names input arrays 0, 1 and 2 of `algorithm` select; the engine's
+// name for one that selects none.
+MorphologyArrays selected_morphology_arrays(vtkAlgorithm* algorithm);
+
 // The morphology of a frame: measure_frame with profile bins of
 // bin_spacings particle spacings. Reads the points, the point arrays
-// velocity, mass and initial_position, and the field data base_points
-// (read_base_points) and particle_spacing. Returns "", else what is missing
-// or wrong, naming the array. No points: all zero, undetermined, and no
-// array is needed.
-std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out);
+// `arrays` names, and the field data base_points (read_base_points) and
+// particle_spacing. Returns "", else what is missing or wrong, naming the
+// array. No points: all zero, undetermined, and no array is needed.
+std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out,
+                              const MorphologyArrays& arrays = MorphologyArrays());
 
 // Adds the (empty) columns of the morphology table.
 void add_morphology_columns(vtkTable* table);

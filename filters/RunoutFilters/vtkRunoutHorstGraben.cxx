@@ -23,21 +23,23 @@ vtkRunoutHorstGraben::vtkRunoutHorstGraben()
   const BlockParameters defaults;
   this->DipTolerance = defaults.dip_tolerance;
   this->SurfaceGap = defaults.surface_gap;
+  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "displacement");
 }
 
 //------------------------------------------------------------------------------
 int vtkRunoutHorstGraben::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkDataArray* displacementArray =
-    vtkPointSet::GetData(inputVector[0])->GetPointData()->GetArray("displacement");
+  vtkDataArray* displacementArray = this->GetInputArrayToProcess(1, inputVector);
   if (!displacementArray)
   {
-    vtkErrorMacro("The input has no point array \"displacement\": not a Runout particle frame.");
+    vtkErrorMacro("The input has no point array \"" << selected_array_name(this, 1)
+                                                    << "\" (the displacement): not a Runout "
+                                                       "particle frame.");
     return 1;
   }
   const std::string problem = point_array_problem(
-    vtkPointSet::GetData(inputVector[0]), displacementArray, "displacement", 1);
+    vtkPointSet::GetData(inputVector[0]), displacementArray, selected_array_name(this, 1), 1);
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);

@@ -4,7 +4,8 @@
  *          Runout particle frame: outlines and a table.
  *
  * Input: as vtkRunoutShearBands, whose bands (with the same parameters)
- * bound the blocks, plus the 3-component point array `displacement`.
+ * bound the blocks, plus the 3-component point array of the displacement
+ * (input array 1, default `displacement`).
  *
  * The bands that reach the slide's upper surface (within SurfaceGap
  * particle spacings) and are not parallel to the base (|dip| >=

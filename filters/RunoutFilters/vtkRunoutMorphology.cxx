@@ -59,6 +59,12 @@ void FillProfile(const runout::Profile& profile, vtkPolyData* output)
 vtkRunoutMorphology::vtkRunoutMorphology()
 {
   this->SetNumberOfOutputPorts(2);
+  const runout::filters::MorphologyArrays arrays;
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.velocity.c_str());
+  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.mass.c_str());
+  this->SetInputArrayToProcess(
+    2, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.initial_position.c_str());
 }
 
 //------------------------------------------------------------------------------
@@ -95,7 +101,8 @@ int vtkRunoutMorphology::RequestData(
 
   runout::filters::FrameMorphology morphology;
   const std::string error =
-    runout::filters::measure_point_set(input, this->BinSpacings, morphology);
+    runout::filters::measure_point_set(input, this->BinSpacings, morphology,
+      runout::filters::selected_morphology_arrays(this));
   if (!error.empty())
   {
     vtkErrorMacro(<< error);

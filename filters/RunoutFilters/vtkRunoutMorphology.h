@@ -26,6 +26,9 @@
  * configuration, so one frame is enough: the runout is relative to the
  * first frame of the run without reading it.
  *
+ * The point arrays read are input arrays 0 (velocity), 1 (mass) and 2
+ * (initial position), the engine's names by default.
+ *
  * A frame without points gives an empty profile and a row with `particles`
  * 0, NaN lengths and `undetermined`. A frame with points but without one
  * of the arrays: an error naming it, both outputs empty.

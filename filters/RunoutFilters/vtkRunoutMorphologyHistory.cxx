@@ -3,14 +3,52 @@
 #include "FrameArrays.h"
 #include "MorphologyFrame.h"
 
+#include "vtkDoubleArray.h"
 #include "vtkInformation.h"
+#include "vtkNew.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointSet.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTable.h"
 
+#include <utility>
+
 vtkStandardNewMacro(vtkRunoutMorphologyHistory);
+
+namespace
+{
+// The lengths of output port 1, under the names the chart shows, with their
+// unit: a line chart plots every numeric column of the table it is given,
+// and the full table's counts (particles: thousands) and ratios would
+// flatten the lengths.
+const std::pair<const char*, const char*> LengthColumns[] = { { "Time", "Time" },
+  { "toe", "toe (m)" }, { "rear", "rear (m)" }, { "runout", "runout (m)" },
+  { "length", "length (m)" }, { "max_thickness", "max_thickness (m)" } };
+
+void AddLengthColumns(vtkTable* history, vtkTable* lengths)
+{
+  for (const auto& [name, label] : LengthColumns)
+  {
+    vtkNew<vtkDoubleArray> column;
+    column->DeepCopy(history->GetColumnByName(name));
+    column->SetName(label);
+    lengths->AddColumn(column);
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+vtkRunoutMorphologyHistory::vtkRunoutMorphologyHistory()
+{
+  this->SetNumberOfOutputPorts(2);
+  const runout::filters::MorphologyArrays arrays;
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.velocity.c_str());
+  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.mass.c_str());
+  this->SetInputArrayToProcess(
+    2, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.initial_position.c_str());
+}
 
 //------------------------------------------------------------------------------
 int vtkRunoutMorphologyHistory::FillInputPortInformation(int, vtkInformation* info)
@@ -27,11 +65,14 @@ int vtkRunoutMorphologyHistory::RequestInformation(
   this->NumberOfTimeSteps = inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
     ? inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
     : 0;
-  // The table spans every time step: it has no time of its own, so that a
-  // change of the view's time does not run the whole series again.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  // The tables span every time step: they have no time of their own, so
+  // that a change of the view's time does not run the whole series again.
+  for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
+  {
+    vtkInformation* outInfo = outputVector->GetInformationObject(port);
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  }
   return 1;
 }
 
@@ -72,7 +113,8 @@ int vtkRunoutMorphologyHistory::RequestData(
   // a frame that could not be read (a file the index lists is missing).
   const std::string error = input->GetNumberOfPoints() == 0
     ? std::string("the frame has no points (a file the index lists missing or unreadable?).")
-    : runout::filters::measure_point_set(input, runout::kMainBodyBinSpacings, morphology);
+    : runout::filters::measure_point_set(input, runout::kMainBodyBinSpacings, morphology,
+        runout::filters::selected_morphology_arrays(this));
   if (!error.empty())
   {
     vtkErrorMacro(<< "Time step " << this->CurrentTimeIndex << ": " << error);
@@ -91,6 +133,7 @@ int vtkRunoutMorphologyHistory::RequestData(
   request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
   this->CurrentTimeIndex = 0;
   output->ShallowCopy(this->History);
+  AddLengthColumns(this->History, vtkTable::GetData(outputVector, 1));
   return 1;
 }
 

@@ -10,8 +10,14 @@
  * vtkExtractDataArraysOverTime does) and appends one row per step, the
  * columns of vtkRunoutMorphology's table: `Time`, `toe`, `rear`, `length`,
  * `max_thickness`, `runout`, `toe_velocity`, ... and `mechanism`. ParaView
- * shows it as a line chart against `Time`. An input without time steps
+ * opens output port 1, the lengths alone (`Time`, `toe (m)`, `rear (m)`,
+ * `runout (m)`, `length (m)`, `max_thickness (m)`), as a line chart
+ * against `Time`; port 0 is the whole table. An input without time steps
  * gives the one row of its current data. The output is not temporal.
+ *
+ * The point arrays read are input arrays 0 (velocity), 1 (mass) and 2
+ * (initial position), the engine's `velocity`, `mass` and
+ * `initial_position` by default.
  *
  * A frame without points gives its row with NaN lengths; a frame with
  * points but without one of the arrays vtkRunoutMorphology needs stops the
@@ -32,7 +38,7 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
 protected:
-  vtkRunoutMorphologyHistory() = default;
+  vtkRunoutMorphologyHistory();
   ~vtkRunoutMorphologyHistory() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;

@@ -54,21 +54,20 @@ struct NamedField
   const std::vector<double>* Values;
 };
 
-// The image of the particles' fields projected on the grid of `spacing`
-// over them, with `coverage`; the first field is the active scalars.
+// The image of the particles' fields projected on `grid`, with
+// `coverage`; the first field is the active scalars.
 void FillGrid(vtkImageData* image, const std::vector<Vec2>& points,
-  const std::vector<NamedField>& fields, double spacing, double radius)
+  const std::vector<NamedField>& fields, const GridSpec& grid, double radius)
 {
   std::vector<const std::vector<double>*> values;
   for (const NamedField& field : fields)
   {
     values.push_back(field.Values);
   }
-  const GridSpec grid = grid_covering(points, spacing);
   const GridProjection projection = project_to_grid(points, values, grid, radius);
 
   image->SetOrigin(grid.origin.x, grid.origin.y, 0.0);
-  image->SetSpacing(spacing, spacing, spacing);
+  image->SetSpacing(grid.spacing, grid.spacing, grid.spacing);
   image->SetDimensions(grid.nx, grid.ny, grid.nx > 0 ? 1 : 0);
   for (size_t f = 0; f < fields.size(); ++f)
   {
@@ -93,6 +92,81 @@ struct vtkRunoutPlasticStrain::vtkInternals
   vtkMTimeType CachedUpstream = 0;  // the upstream pipeline the cache came from
   bool FetchingPrevious = false;    // this execution delivers the previous step only
   double PreviousStep = 0.0;
+
+  // The survey of a time series: the union of its frames' bounding boxes,
+  // read once (every step in turn, CONTINUE_EXECUTING), so that the Strain
+  // Grid has one extent for every frame, declared in RequestInformation. A
+  // grid that followed each frame's particles would change its extent with
+  // the time, which ParaView's image representations cannot follow (they
+  // keep the extent of the first frame, and report every other as outside
+  // it).
+  bool Surveying = false;
+  size_t SurveyIndex = 0;
+  bool Surveyed = false;
+  vtkMTimeType SurveyedUpstream = 0;
+  bool HasBox = false;
+  Vec2 Low, High;
+  double SurveySpacing = 0.0;  // particle_spacing of the series
+  double RequestedTime = 0.0;  // the step the survey was started for
+
+  // The grid spacing: the property, else twice the particle spacing.
+  static double Spacing(double gridSpacing, double particleSpacing)
+  {
+    return gridSpacing > 0 ? gridSpacing
+                           : (particleSpacing > 0 ? 2 * particleSpacing : FallbackGridSpacing);
+  }
+
+  // Whether the series coming from the upstream pipeline `upstream` has
+  // been surveyed.
+  bool SurveyDone(vtkMTimeType upstream) const
+  {
+    return this->Surveyed && this->SurveyedUpstream == upstream;
+  }
+
+  // Whether it has a grid: surveyed, with points in some frame.
+  bool HasSeriesGrid(vtkMTimeType upstream) const
+  {
+    return !this->TimeSteps.empty() && this->SurveyDone(upstream) && this->HasBox;
+  }
+
+  // The grid over every frame of the series.
+  GridSpec SeriesGrid(double gridSpacing) const
+  {
+    return grid_covering({ this->Low, this->High }, Spacing(gridSpacing, this->SurveySpacing));
+  }
+
+  // Adds one surveyed frame: its box, its spacing, and its strains when
+  // they are the ones the requested step needs next.
+  void Survey(vtkPointSet* frame, vtkDataArray* xi, vtkDataArray* ids, bool valid)
+  {
+    if (points_problem(frame).empty() && frame->GetNumberOfPoints() > 0)
+    {
+      double bounds[6];
+      frame->GetBounds(bounds);
+      const Vec2 low{ bounds[0], bounds[2] }, high{ bounds[1], bounds[3] };
+      this->Low = this->HasBox ? Vec2{ std::min(this->Low.x, low.x), std::min(this->Low.y, low.y) }
+                               : low;
+      this->High = this->HasBox
+        ? Vec2{ std::max(this->High.x, high.x), std::max(this->High.y, high.y) }
+        : high;
+      this->HasBox = true;
+    }
+    if (!(this->SurveySpacing > 0))
+    {
+      this->SurveySpacing = particle_spacing_of(frame);
+    }
+    const double time = this->TimeSteps[this->SurveyIndex];
+    const double previous = this->PreviousTime(this->RequestedTime);
+    if (time == previous)
+    {
+      this->Cache[time] = valid ? strain_by_id(ids_of(ids), component_of(xi)) : StrainById();
+    }
+    if (++this->SurveyIndex == this->TimeSteps.size())
+    {
+      this->Surveying = false;
+      this->Surveyed = true;
+    }
+  }
 
   // The time step before `time` (as delivered by a reader: the largest step
   // <= time), or with no time steps the largest cached time before it; NaN
@@ -197,17 +271,40 @@ int vtkRunoutPlasticStrain::RequestDataObject(
 
 //------------------------------------------------------------------------------
 int vtkRunoutPlasticStrain::RequestInformation(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  auto& steps = this->Internals->TimeSteps;
-  steps.clear();
+  auto& internals = *this->Internals;
+  internals.TimeSteps.clear();
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
   {
     const double* values = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    steps.assign(values, values + inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+    internals.TimeSteps.assign(
+      values, values + inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+  }
+  // The series' grid once it has been surveyed. Before (the first update of
+  // a series) and for frames without time steps, only RequestData knows it.
+  vtkInformation* gridInfo = outputVector->GetInformationObject(1);
+  if (internals.HasSeriesGrid(this->UpstreamTime()))
+  {
+    const GridSpec grid = internals.SeriesGrid(this->GridSpacing);
+    const int extent[6] = { 0, grid.nx - 1, 0, grid.ny - 1, 0, 0 };
+    gridInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  }
+  else
+  {
+    gridInfo->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
   }
   return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkRunoutPlasticStrain::UpstreamTime()
+{
+  // Not for frames given one at a time without time steps: each of them is
+  // an upstream change.
+  auto* upstream = vtkDemandDrivenPipeline::SafeDownCast(this->GetInputExecutive(0, 0));
+  return upstream && !this->Internals->TimeSteps.empty() ? upstream->GetPipelineMTime() : 0;
 }
 
 //------------------------------------------------------------------------------
@@ -219,11 +316,8 @@ int vtkRunoutPlasticStrain::RequestUpdateExtent(
 
   // The cached strains are stale once another strain array is selected, or,
   // for a time series, once anything upstream changes (another file, an
-  // array computed upstream). Not for frames given one at a time without
-  // time steps: each of them is an upstream change.
-  auto* upstream = vtkDemandDrivenPipeline::SafeDownCast(this->GetInputExecutive(0, 0));
-  const vtkMTimeType upstreamTime =
-    upstream && !internals.TimeSteps.empty() ? upstream->GetPipelineMTime() : 0;
+  // array computed upstream).
+  const vtkMTimeType upstreamTime = this->UpstreamTime();
   const std::string array = selected_array_name(this, 0);
   if (array != internals.CachedArray || upstreamTime != internals.CachedUpstream)
   {
@@ -239,8 +333,24 @@ int vtkRunoutPlasticStrain::RequestUpdateExtent(
   {
     return 1;
   }
-  const double previous =
-    internals.PreviousTime(outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
+  const double requested = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (!internals.SurveyDone(upstreamTime))
+  {
+    if (!internals.Surveying)
+    {
+      internals.Surveying = true;
+      internals.SurveyIndex = 0;
+      internals.Surveyed = internals.HasBox = false;
+      internals.SurveyedUpstream = upstreamTime;
+      internals.SurveySpacing = 0.0;
+      internals.RequestedTime = requested;
+    }
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(),
+      internals.TimeSteps[internals.SurveyIndex]);
+    return 1;
+  }
+  const double previous = internals.PreviousTime(requested);
   if (!std::isnan(previous) && internals.Cache.count(previous) == 0)
   {
     internals.FetchingPrevious = true;
@@ -262,6 +372,12 @@ int vtkRunoutPlasticStrain::RequestData(
   vtkDataArray* idArray = input->GetPointData()->GetArray("particle_id");
   const std::string problem = xiArray && idArray ? FrameProblem(input, xiArray, idArray) : "";
   const bool valid = xiArray && idArray && problem.empty();
+  if (internals.Surveying)
+  {
+    internals.Survey(input, xiArray, idArray, valid);
+    request->Set(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING(), 1);
+    return 1;
+  }
   if (internals.FetchingPrevious)
   {
     // Cached even when invalid (as no strains), so that the next pass does
@@ -296,9 +412,9 @@ int vtkRunoutPlasticStrain::RequestData(
   }
 
   const double particleSpacing = particle_spacing_of(input);
-  const double spacing = this->GridSpacing > 0
-    ? this->GridSpacing
-    : (particleSpacing > 0 ? 2 * particleSpacing : FallbackGridSpacing);
+  const bool series = internals.HasSeriesGrid(this->UpstreamTime());
+  const double spacing = vtkInternals::Spacing(
+    this->GridSpacing, series ? internals.SurveySpacing : particleSpacing);
   const std::string far = extent_problem(positions_of(input), spacing);
   if (!far.empty())
   {
@@ -320,9 +436,11 @@ int vtkRunoutPlasticStrain::RequestData(
 
   double bounds[6];
   input->GetBounds(bounds);
-  const double nodes = input->GetNumberOfPoints() == 0
+  const Vec2 low = series ? internals.Low : Vec2{ bounds[0], bounds[2] };
+  const Vec2 high = series ? internals.High : Vec2{ bounds[1], bounds[3] };
+  const double nodes = input->GetNumberOfPoints() == 0 && !series
     ? 0.0
-    : ((bounds[1] - bounds[0]) / spacing + 2) * ((bounds[3] - bounds[2]) / spacing + 2);
+    : ((high.x - low.x) / spacing + 2) * ((high.y - low.y) / spacing + 2);
   if (!(nodes <= MaximumGridNodes) || !std::isfinite(spacing))
   {
     vtkErrorMacro("GridSpacing " << spacing << " gives a grid of " << nodes
@@ -331,15 +449,18 @@ int vtkRunoutPlasticStrain::RequestData(
   }
   // The radius reaches at least two particle spacings, so that a fine grid
   // has no uncovered node inside the slide.
+  const GridSpec grid = input->GetNumberOfPoints() == 0 && !series
+    ? GridSpec{ { 0, 0 }, spacing, 0, 0 }
+    : grid_covering({ low, high }, spacing);
   vtkImageData* image = vtkImageData::GetData(outputVector, 1);
   FillGrid(image, positions_of(input),
     { { xiArray->GetName(), &xi }, { "plastic_strain_increment", &increment },
       { "normalised_plastic_strain", &normalised } },
-    spacing, 2 * std::max(spacing, particleSpacing));
-  // The grid's extent follows the particles, so it is known only now, not
-  // in RequestInformation: without it as the whole extent, ParaView's image
-  // representations (which slice and extract within the whole extent) show
-  // nothing.
+    grid, 2 * std::max(grid.spacing, particleSpacing));
+  // RequestInformation has declared this extent already, except on the
+  // first update of a series (before its survey) and for frames without
+  // time steps, whose grid only their own particles give; without it as
+  // the whole extent, ParaView's image representations show nothing.
   outputVector->GetInformationObject(1)->Set(
     vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), image->GetExtent(), 6);
   return 1;

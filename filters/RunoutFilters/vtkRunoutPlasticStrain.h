@@ -24,7 +24,10 @@
  *   the largest xi of the frame (0 when that is 0).
  *
  * Output port 1: a vtkImageData (one node thick in z) over the particles'
- * bounding box with the node spacing GridSpacing, holding the kernel-weighted
+ * bounding box with the node spacing GridSpacing (for a time series, the
+ * box of every frame together: the first update reads each time step once
+ * to find it, so that the grid's whole extent, the same for every frame, is
+ * known in RequestInformation), holding the kernel-weighted
  * projections of xi (under its input name), of the increment and of the
  * normalised strain, and `coverage` (1 where a particle is within the kernel
  * radius, else 0 with all values 0). The kernel is w = 1 - (r / R)^2 with
@@ -95,6 +98,10 @@ protected:
   double GridSpacing = 0.0;
 
 private:
+  // The upstream pipeline's modification time for a time series, 0 for
+  // frames without time steps.
+  vtkMTimeType UpstreamTime();
+
   vtkRunoutPlasticStrain(const vtkRunoutPlasticStrain&) = delete;
   void operator=(const vtkRunoutPlasticStrain&) = delete;
 
