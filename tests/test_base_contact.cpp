@@ -183,6 +183,10 @@ TEST(BaseContact, RingingBlockKeepsTheRigidBlockRateAndItsContactForSeconds) {
   s.base.kind = BaseKind::Planar;
   s.base.interface = InterfaceKind::Frictional;
   s.base.shear_strength = tau;
+  // The contact alone: with deforming domains and pure FLIP, the ringing
+  // block's thickness also drifts 1.3 mm over the four seconds, the
+  // domains breathing with the ringing (docs/convergence.md, "What is left").
+  s.grid.domain = DomainKind::Fixed;
   Simulation sim(s);
   sim.advance_to(1.0);  // the friction builds up over the first half second
   const double v1 = mean_velocity_x(sim);

@@ -18,7 +18,7 @@ TEST(VibratingBar, FirstModePeriodIsFourLOverC) {
   Scene s = fixtures::block_scene({0.0, 0.0}, {L, h}, {0.0, 0.0}, {2.0 * L, h}, h, 2, rho, E,
                                  0.0);
   s.boundary = {BoundaryKind::Fixed, BoundaryKind::Free, BoundaryKind::Slip, BoundaryKind::Slip};
-  s.solver.pic_cells = 0.0;  // pure FLIP
+  s.solver.pic_cells = 0.0;  // pure FLIP (the default)
   Simulation sim(s);
   Particles& P = sim.particles();
   for (int p = 0; p < P.size(); ++p) P.vx[p] = v0 * std::sin(M_PI * P.x[p] / (2.0 * L));

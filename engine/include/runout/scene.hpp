@@ -47,9 +47,10 @@ struct GravitySpec {
 struct SolverSpec {
   TransferKind transfer = TransferKind::Flip;
   double flip = 0.99;             // PIC/FLIP blend (transfer "pic_flip"): 1 pure FLIP, 0 pure PIC
-  // Transfer "flip": the PIC share damps at the rate 1 / T, with T the time
-  // a P-wave takes to cross pic_cells cells (flip_share); 0: pure FLIP.
-  double pic_cells = 50.0;
+  // Transfer "flip": a PIC share that damps at the rate 1 / T, with T the
+  // time a P-wave takes to cross pic_cells cells (flip_share); 0, the
+  // default: pure FLIP, as Uintah, CB-Geo and Anura3D run.
+  double pic_cells = 0.0;
   double mass_threshold = 1e-9;   // nodes lighter than this fraction of a full cell's mass are not accelerated
   double damping = 0.0;           // Cundall local non-viscous damping coefficient, 0..1
   bool volumetric_smoothing = true;  // cell-averaged volumetric strain rate (anti-locking)
