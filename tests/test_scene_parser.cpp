@@ -289,8 +289,13 @@ INSTANTIATE_TEST_SUITE_P(
                   "dam.shear_rate", "must be one of \"linear\", \"plug\""},
         ErrorCase{"NegativeElements", 13, 13, "[dam]\nelements = -1", 14, "dam.elements",
                   "must be >= 0 (got -1)"},
-        ErrorCase{"EmptyShearLayer", 13, 13, "[dam]\nmin_shear_layer = 0", 14,
-                  "dam.min_shear_layer", "must be in (0, 1] (got 0)"},
+        ErrorCase{"UnknownEarthPressure", 13, 13, "[dam]\nearth_pressure = \"coulomb\"", 14,
+                  "dam.earth_pressure",
+                  "must be one of \"rankine\", \"hydrostatic\" (got \"coulomb\")"},
+        // The fixed fraction is gone: the plug estimate's sheared layer
+        // follows from the rheology (docs/dam.md).
+        ErrorCase{"RetiredShearLayerKey", 13, 13, "[dam]\nmin_shear_layer = 0.1", 14,
+                  "dam.min_shear_layer", "unknown key"},
         ErrorCase{"UnknownBodyKey", 25, 25, "colour = \"red\"", 25, "body[0].colour", "unknown key"},
         ErrorCase{"KeyOfAnotherBodyType", 25, 25, "max = [3.0, 2.0]\nheight = 1.0", 26,
                   "body[0].height", "unknown key"},
@@ -502,7 +507,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.method, b.method);
   EXPECT_EQ(a.dam.shear_rate, b.dam.shear_rate);
   EXPECT_EQ(a.dam.elements, b.dam.elements);
-  EXPECT_EQ(a.dam.min_shear_layer, b.dam.min_shear_layer);
+  EXPECT_EQ(a.dam.earth_pressure, b.dam.earth_pressure);
   EXPECT_EQ(a.output.compress, b.output.compress);
   EXPECT_EQ(a.overrides, b.overrides);
 }
@@ -557,17 +562,18 @@ TEST(SceneWriter, PlanarBaseAndTrescaDefaultsRoundTrip) {
 // The depth-averaged model's keys: the method in [scene], the [dam] table.
 TEST(SceneWriter, DepthAveragedKeysRoundTrip) {
   Scene s = parse_scene(replace_lines(3, 3, "method = \"dam\"") +
-                            "[dam]\nshear_rate = \"plug\"\nelements = 120\nmin_shear_layer = 0.25\n",
+                            "[dam]\nshear_rate = \"plug\"\nearth_pressure = \"hydrostatic\"\nelements = 120\n",
                         "dam.toml");
   EXPECT_EQ(s.method, Method::Dam);
   EXPECT_EQ(s.dam.shear_rate, ShearRateEstimate::Plug);
   EXPECT_EQ(s.dam.elements, 120);
-  EXPECT_EQ(s.dam.min_shear_layer, 0.25);
+  EXPECT_EQ(s.dam.earth_pressure, EarthPressure::Hydrostatic);
   expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
   const Scene defaults = parse_scene(kMinimal, "mini.toml");
   EXPECT_EQ(defaults.method, Method::Mpm);
   EXPECT_EQ(defaults.dam.shear_rate, ShearRateEstimate::Linear);
   EXPECT_EQ(defaults.dam.elements, 0);
+  EXPECT_EQ(defaults.dam.earth_pressure, EarthPressure::Rankine);
 }
 
 TEST(SceneWriter, MethodOverridesAreRecordedAndChecked) {

@@ -12,6 +12,7 @@
 #include "runout/morphology.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
+#include "runout/stages.hpp"
 
 namespace runout {
 
@@ -35,18 +36,45 @@ BasalLaw basal_law(const Scene& scene, const MaterialSpec& m) {
   return law;
 }
 
-// The shear strain rate at the base of an element (docs/dam.md, "Shear
-// strain rate"). speed = |v|, h the thickness; tau_y the element's basal
-// resistance at rest rate (the Bingham yield stress) and tau_d its driving
-// stress, both for the Plug estimate.
-double shear_rate(const DamSpec& o, double speed, double h, double tau_y, double tau_d) {
-  if (o.shear_rate == ShearRateEstimate::Linear) return 2.0 * speed / h;
-  // Depth below which the stress, growing linearly with depth to tau_d at
-  // the base, exceeds tau_y: the sheared layer h_s = f h under the plug.
-  const double f = tau_d > 0.0 ? std::clamp(1.0 - tau_y / tau_d, o.min_shear_layer, 1.0)
-                               : o.min_shear_layer;
-  return speed / (f * h * (1.0 - 0.5 * f));
-}
+// The plug-flow relations in x = ln f, f = h_s / h the sheared fraction
+// (docs/dam.md, "Shear strain rate"): a Herschel-Bulkley layer of rheology
+// tau = tau_y + A (gamma_dot / gamma_dot_ref)^n, steady on its base, shears
+// below the depth where tau(z) = tau_b (1 - z / h) falls to tau_y, so
+// tau_b = tau_y / (1 - f); integrating its velocity profile twice gives
+//   gamma_dot_b = (n + 1) v / (n f h (1 - c f)),   c = n / (2 n + 1).
+// The flow's f is the root of
+//   phi(x) = ln(tau_b - tau_y) - ln(A (gamma_dot_b / gamma_dot_ref)^n)
+//          = ln(tau_y / A) + (1 + n) x - ln(1 - e^x) + n ln(1 - c e^x) - n ln k,
+// k = (n + 1) v / (n h gamma_dot_ref), increasing in x from -inf to +inf at 0.
+struct PlugFlow {
+  double n, c, constant;  // constant = ln(tau_y / A) - n ln k
+
+  double phi(double x) const {
+    const double f = std::exp(x);
+    return constant + (1.0 + n) * x - std::log1p(-f) + n * std::log1p(-c * f);
+  }
+  double slope(double x) const {
+    const double f = std::exp(x);
+    return (1.0 + n) + f / (1.0 - f) - n * c * f / (1.0 - c * f);
+  }
+  // Newton's method kept inside a bracket [lo, 0) where phi changes sign
+  // (bisection whenever a step leaves it): phi is steep near f = 1 and
+  // almost linear for small f, so neither alone is safe.
+  double root() const {
+    double lo = std::min(-1e-3, -constant / (1.0 + n)), hi = 0.0;
+    while (phi(lo) > 0.0) lo -= std::max(1.0, std::abs(lo));
+    double x = lo;
+    for (int k = 0; k < 200; ++k) {
+      const double value = phi(x);
+      (value > 0.0 ? hi : lo) = x;
+      double next = x - value / slope(x);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (std::abs(next - x) <= 1e-15 * std::max(1.0, std::abs(x))) return next;
+      x = next;
+    }
+    return x;
+  }
+};
 
 }  // namespace
 
@@ -58,6 +86,34 @@ double BasalLaw::resistance(double xi, double gamma_dot, double normal_stress) c
     case InterfaceKind::NoSlip: break;
   }
   return su;
+}
+
+double BasalLaw::interface_limit(double normal_stress) const {
+  switch (interface) {
+    case InterfaceKind::Frictional: return tau;
+    case InterfaceKind::Coulomb: return mu * normal_stress;
+    case InterfaceKind::NoSlip: break;
+  }
+  return kInfinity;
+}
+
+double plug_flow_shear_rate(const StrengthParams& p, double xi, double speed, double h,
+                            double cap) {
+  const double tau_y = strength(p, xi, 0.0);
+  // At rest, or sliding on an interface weaker than the clay: no shear in it.
+  if (speed == 0.0 || cap <= tau_y) return 0.0;
+  // su(xi, gamma_dot) - tau_y = A (gamma_dot / gamma_dot_ref)^n in both
+  // strength forms (strength.hpp): A is the rate term at the reference rate.
+  const double A = strength(p, xi, p.reference_rate) - tau_y;
+  const double n = p.rate_exponent, c = n / (2.0 * n + 1.0);
+  const double k = (n + 1.0) * speed / (n * h * p.reference_rate);
+  const PlugFlow flow{n, c, std::log(tau_y / A) - n * std::log(k)};
+  const double f = std::exp(flow.root());
+  const double rate = (n + 1.0) * speed / (n * f * h * (1.0 - c * f));
+  if (!std::isfinite(cap)) return rate;
+  // The interface slips at cap: the clay above it shears at the rate where
+  // its strength reaches cap, if that is less.
+  return std::min(rate, p.reference_rate * std::pow((cap - tau_y) / A, 1.0 / n));
 }
 
 double thickness_along_normal(const Polygon& polygon, const BaseView& base, double s) {
@@ -88,6 +144,7 @@ double thickness_along_normal(const Polygon& polygon, const BaseView& base, doub
 DamSolver::DamSolver(const Scene& scene)
     : base_(scene.base, scene.grid.min.y()),
       gravity_(scene.gravity.vector),
+      gravity_ramp_(scene.gravity.ramp),
       options_(scene.dam),
       courant_(scene.time.courant) {
   if (scene.base.kind == BaseKind::None)
@@ -104,6 +161,19 @@ DamSolver::DamSolver(const Scene& scene)
                      0);
   density_ = material.density;
   law_ = basal_law(scene, material);
+  // A rate-independent clay has no sheared layer in plug flow: it fails on
+  // a slip surface of no thickness, where the rate (and so the softening)
+  // would be infinite.
+  if (options_.shear_rate == ShearRateEstimate::Plug && !(material.eta > 0.0))
+    throw SceneError("material " + material.name +
+                         ": dam.shear_rate = \"plug\" needs a rate-dependent strength (eta > 0); "
+                         "without one the plug flow has no sheared layer (use \"linear\")",
+                     0);
+  // Undrained, so incompressible: in plane strain sigma_x - sigma_z grows at
+  // 2 G (eps_x - eps_z) = 4 G eps_x. K = 1 is the layer without stiffness
+  // (and so without strength): its deviator stays 0.
+  const double shear_modulus = material.youngs_modulus / (2.0 * (1.0 + material.poisson_ratio));
+  modulus_ = options_.earth_pressure == EarthPressure::Rankine ? 4.0 * shear_modulus : 0.0;
 
   // The body's extent along the base, split into equal elements.
   const BaseView b = base_.view();
@@ -137,6 +207,8 @@ DamSolver::DamSolver(const Scene& scene)
   xi_.assign(n, 0.0);
   gamma_dot_.assign(n, 0.0);
   tau_.assign(n, 0.0);
+  q_.assign(n, 0.0);  // stress-free start: the hydrostatic thrust, as at K = 1
+  layer_xi_.assign(n, 0.0);
 }
 
 DamSolver::Slope DamSolver::slope_at(double s) const {
@@ -146,14 +218,18 @@ DamSolver::Slope DamSolver::slope_at(double s) const {
 
 double DamSolver::stable_dt() const {
   // Long shallow-water waves travel at sqrt(g_n h) relative to the flow
-  // (e.g. Savage & Hutter 1989, J. Fluid Mech. 199); the element length over
-  // the fastest signal speed, times the Courant number.
+  // (e.g. Savage & Hutter 1989, J. Fluid Mech. 199); with the layer's
+  // stiffness the thrust N = rho g_n h^2 / 2 - h q stiffens by 4 G h per unit
+  // strain, so the elastic wave speed is sqrt(g_n h + 4 G / rho). The
+  // element length over the fastest signal speed, times the Courant number;
+  // slopes_ hold the whole of gravity, the most a ramp gives.
   double dt = kInfinity;
   for (int e = 0; e < elements(); ++e) {
     // The viscosity adds its own signal speed (Wilkins 1980): 2 c2 |dv| + c1 c.
-    const double wave = std::sqrt(std::max(0.0, slopes_[e].g_n) * thickness(e));
+    const double gh = std::max(0.0, slopes_[e].g_n) * thickness(e);
+    const double wave = std::sqrt(gh + modulus_ / density_);
     const double jump = std::max(0.0, v_[e] - v_[e + 1]);
-    const double c = (1.0 + kLinearViscosity) * wave + 2.0 * kQuadraticViscosity * jump +
+    const double c = wave + kLinearViscosity * std::sqrt(gh) + 2.0 * kQuadraticViscosity * jump +
                      std::max(std::abs(v_[e]), std::abs(v_[e + 1]));
     if (c > 0.0) dt = std::min(dt, courant_ * length(e) / c);
   }
@@ -166,39 +242,41 @@ double DamSolver::stable_dt() const {
 double DamSolver::viscous_force(int e) const {
   const double dv = v_[e + 1] - v_[e];
   if (dv >= 0.0) return 0.0;
-  const double h = thickness(e), c = std::sqrt(std::max(0.0, slopes_[e].g_n) * h);
+  const double h = thickness(e), c = std::sqrt(std::max(0.0, g_n(e)) * h);
   return density_ * h * (kQuadraticViscosity * dv * dv - kLinearViscosity * c * dv);
 }
 
-// Gravity along the slope plus the pressure gradient, per node [N/m]:
-// -d/ds (rho g_n h^2 / 2) integrated over the node's share of the layer is
-// the jump of the element pressure forces P across it; outside the slide P = 0.
+double DamSolver::thrust(int e) const {
+  const double h = thickness(e);
+  return 0.5 * density_ * g_n(e) * h * h - h * q_[e];
+}
+
+// Gravity along the slope plus the thrust gradient, per node [N/m]:
+// -dN/ds integrated over the node's share of the layer is the jump of the
+// element thrusts across it; outside the slide N = 0.
 std::vector<double> DamSolver::driving_forces() const {
   std::vector<double> drive(s_.size(), 0.0);
   for (int e = 0; e < elements(); ++e) {
-    const double h = thickness(e);
-    const double weight = 0.5 * density_ * volume_[e] * slopes_[e].g_t;
-    const double pressure =
-        0.5 * density_ * slopes_[e].g_n * h * h + viscous_force(e);
-    drive[e] += weight - pressure;
-    drive[e + 1] += weight + pressure;
+    const double weight = 0.5 * density_ * volume_[e] * gravity_scale_ * slopes_[e].g_t;
+    const double push = thrust(e) + viscous_force(e);
+    drive[e] += weight - push;
+    drive[e + 1] += weight + push;
   }
   return drive;
 }
 
+double DamSolver::basal_shear_rate(int e, double sigma_n) const {
+  const double speed = std::abs(element_velocity(e)), h = thickness(e);
+  if (options_.shear_rate == ShearRateEstimate::Linear) return 2.0 * speed / h;
+  return plug_flow_shear_rate(law_.strength, xi_[e], speed, h, law_.interface_limit(sigma_n));
+}
+
 // The basal resistance of every element at its current rate, and the
 // softening variable xi_b advanced by gamma_dot dt.
-void DamSolver::update_basal_state(const std::vector<double>& drive, double dt) {
+void DamSolver::update_basal_state(double dt) {
   for (int e = 0; e < elements(); ++e) {
-    const double h = thickness(e);
-    const double sigma_n = density_ * slopes_[e].g_n * h;
-    double tau_y = 0.0, tau_d = 0.0;
-    if (options_.shear_rate == ShearRateEstimate::Plug) {
-      tau_y = law_.resistance(xi_[e], 0.0, sigma_n);
-      // The element's share of its nodes' driving forces over its length.
-      tau_d = std::abs(0.5 * (drive[e] + drive[e + 1])) / length(e);
-    }
-    gamma_dot_[e] = shear_rate(options_, std::abs(element_velocity(e)), h, tau_y, tau_d);
+    const double sigma_n = density_ * g_n(e) * thickness(e);
+    gamma_dot_[e] = basal_shear_rate(e, sigma_n);
     tau_[e] = law_.resistance(xi_[e], gamma_dot_[e], sigma_n);
     xi_[e] += gamma_dot_[e] * dt;
   }
@@ -221,6 +299,27 @@ void DamSolver::update_velocities(const std::vector<double>& drive, double dt) {
   }
 }
 
+// The layer's deviator q from this step's longitudinal strain, an elastic
+// predictor and a return to the Rankine limits |q| <= 2 su (Tresca in plane
+// strain: (sigma_1 - sigma_3) / 2 <= su, with x and z principal). The
+// strength is the clay's own law at the layer's plastic strain and rate:
+// with eps_z = -eps_x the engineering shear strain is 2 eps_x, its rate
+// 2 |dv/ds| (strength.md's gamma_dot for D_xx = -D_zz).
+void DamSolver::update_layer_stress(double dt) {
+  for (int e = 0; e < elements(); ++e) {
+    const double strain_rate = (v_[e + 1] - v_[e]) / length(e);
+    const double limit =
+        2.0 * strength(law_.strength, layer_xi_[e], 2.0 * std::abs(strain_rate));
+    const double trial = q_[e] + modulus_ * strain_rate * dt;
+    if (std::abs(trial) <= limit) {
+      q_[e] = trial;
+      continue;
+    }
+    layer_xi_[e] += 2.0 * (std::abs(trial) - limit) / modulus_;
+    q_[e] = std::copysign(limit, trial);
+  }
+}
+
 void DamSolver::move_nodes(double dt) {
   for (std::size_t i = 0; i < s_.size(); ++i) s_[i] += dt * v_[i];
   for (int e = 0; e < elements(); ++e) {
@@ -233,9 +332,11 @@ void DamSolver::move_nodes(double dt) {
 }
 
 void DamSolver::step(double dt) {
+  gravity_scale_ = gravity_factor(time_ + 0.5 * dt, gravity_ramp_);  // as the MPM step
   const std::vector<double> drive = driving_forces();
-  update_basal_state(drive, dt);
+  update_basal_state(dt);
   update_velocities(drive, dt);
+  update_layer_stress(dt);
   move_nodes(dt);
   time_ += dt;
   last_dt_ = dt;

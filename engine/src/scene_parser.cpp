@@ -622,11 +622,12 @@ void free_bottom_for_base(const TableReader& boundary_table, BoundarySpec& bound
 }
 
 DamSpec read_dam(TableReader r) {
-  r.check_keys({"shear_rate", "elements", "min_shear_layer"});
+  r.check_keys({"shear_rate", "earth_pressure", "elements"});
   DamSpec dam;
   if (auto v = r.find("shear_rate")) dam.shear_rate = v->choice(scene_text::kShearRateNames).value;
+  if (auto v = r.find("earth_pressure"))
+    dam.earth_pressure = v->choice(scene_text::kEarthPressureNames).value;
   if (auto v = r.find("elements")) dam.elements = v->integer(at_least(0));
-  if (auto v = r.find("min_shear_layer")) dam.min_shear_layer = v->number(between(0, 1, "(]"));
   return dam;
 }
 

@@ -47,6 +47,8 @@ inline constexpr Named<InterfaceKind> kInterfaceNames[] = {
 inline constexpr Named<Method> kMethodNames[] = {{"mpm", Method::Mpm}, {"dam", Method::Dam}};
 inline constexpr Named<ShearRateEstimate> kShearRateNames[] = {
     {"linear", ShearRateEstimate::Linear}, {"plug", ShearRateEstimate::Plug}};
+inline constexpr Named<EarthPressure> kEarthPressureNames[] = {
+    {"rankine", EarthPressure::Rankine}, {"hydrostatic", EarthPressure::Hydrostatic}};
 
 template <class Value, std::size_t N>
 std::string_view name_of(const Named<Value> (&names)[N], Value value) {

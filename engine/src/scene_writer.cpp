@@ -179,8 +179,9 @@ std::string to_toml(const Scene& scene) {
   out << "[dam]\n"
       << "shear_rate = " << quoted(name_of(scene_text::kShearRateNames, scene.dam.shear_rate))
       << "\n"
-      << "elements = " << scene.dam.elements << "\n"
-      << "min_shear_layer = " << number(scene.dam.min_shear_layer) << "\n\n";
+      << "earth_pressure = "
+      << quoted(name_of(scene_text::kEarthPressureNames, scene.dam.earth_pressure)) << "\n"
+      << "elements = " << scene.dam.elements << "\n\n";
 
   out << "[output]\n"
       << "compress = " << (scene.output.compress ? "true" : "false") << "\n\n"

@@ -10,15 +10,20 @@
 // its thickness is h_e = V_e / (s_{e+1} - s_e). Per node, per unit width:
 //
 //   M_i dv_i/dt = sum_e m_e g_t,e / 2            gravity along the local slope
-//               + P_{i-1} - P_i,  P_e = rho g_n,e h_e^2 / 2   (pressure gradient)
+//               + N_{i-1} - N_i                  longitudinal thrust
 //               - sum_e tau_e l_e / 2 sign(v_i)  basal resistance
 //
-// with tau_e from the strength law of strength.hpp at the element's
-// accumulated basal shear strain xi_e and its shear strain rate estimate
-// (scene.dam, docs/dam.md "Shear strain rate"):
+//   N_e = rho g_n,e h_e^2 / 2 - h_e q_e   (earth_pressure Rankine; q_e = 0: Hydrostatic)
+//
+// q_e the layer's longitudinal deviator sigma_x - sigma_z (tension
+// positive), elastic with the incompressible plane-strain modulus 4 G and
+// bounded by the Rankine limits |q| <= 2 su (docs/dam.md, "Longitudinal
+// stress"). tau_e comes from the strength law of strength.hpp at the
+// element's accumulated basal shear strain xi_e and its shear strain rate
+// estimate (scene.dam, docs/dam.md "Shear strain rate"):
 //   Linear: a linear velocity profile from rest at the base, 2 |v| / h;
-//   Plug:   a sheared layer h_s = h (1 - tau_y / tau_d) under a rigid plug
-//           (Bingham), |v| / (h_s (1 - h_s / (2 h))).
+//   Plug:   the basal rate of a Herschel-Bulkley plug flow whose rheology is
+//           the strength law: sheared layer f h with f = 1 - tau_y / tau_b.
 #include <vector>
 
 #include "runout/base.hpp"
@@ -38,7 +43,17 @@ struct BasalLaw {
   StrengthParams strength;
 
   double resistance(double xi, double gamma_dot, double normal_stress) const;
+  // The interface's own limit (infinite for no-slip, where the clay fails).
+  double interface_limit(double normal_stress) const;
 };
+
+// The basal shear strain rate of a steady Herschel-Bulkley plug flow of
+// depth-averaged speed `speed` and thickness h whose rheology is the
+// strength law su(xi, gamma_dot) = tau_y + A (gamma_dot / gamma_dot_ref)^n,
+// with the basal stress capped at `cap` by the interface (docs/dam.md,
+// "Shear strain rate"). Needs a rate term (eta > 0).
+double plug_flow_shear_rate(const StrengthParams& p, double xi, double speed, double h,
+                            double cap);
 
 // Thickness of the polygon above the base point at s, measured along the
 // base normal: the length of the normal ray from the base inside the polygon.
@@ -53,7 +68,7 @@ class DamSolver {
 
   void step(double dt);          // throws NumericalFailure
   void advance_to(double t);     // stable steps, the last one landing on t
-  double stable_dt() const;      // CFL: courant l_e / (sqrt(g_n h_e) + |v| + viscous speed)
+  double stable_dt() const;      // CFL: courant l_e / (wave speed + |v| + viscous speed)
 
   int elements() const { return static_cast<int>(volume_.size()); }
   double time() const { return time_; }
@@ -71,6 +86,11 @@ class DamSolver {
   const std::vector<double>& xi() const { return xi_; }
   const std::vector<double>& gamma_dot() const { return gamma_dot_; }
   const std::vector<double>& tau() const { return tau_; }
+  // Elements: the layer's longitudinal deviator q [Pa] (tension positive)
+  // and its accumulated plastic shear strain (2 |plastic longitudinal strain|).
+  const std::vector<double>& deviator() const { return q_; }
+  const std::vector<double>& layer_xi() const { return layer_xi_; }
+  double thrust(int e) const;  // N_e without the artificial viscosity [N/m]
   double length(int e) const { return s_[e + 1] - s_[e]; }
   double thickness(int e) const { return volume_[e] / length(e); }
   double mid(int e) const { return 0.5 * (s_[e] + s_[e + 1]); }
@@ -81,20 +101,26 @@ class DamSolver {
   struct Slope {
     double g_t, g_n;  // gravity along the base tangent and into the base
   };
-  Slope slope_at(double s) const;
+  Slope slope_at(double s) const;                     // the whole of gravity
+  double g_n(int e) const { return gravity_scale_ * slopes_[e].g_n; }  // this step's
   double viscous_force(int e) const;
   std::vector<double> driving_forces() const;
-  void update_basal_state(const std::vector<double>& drive, double dt);
+  double basal_shear_rate(int e, double sigma_n) const;
+  void update_basal_state(double dt);
   void update_velocities(const std::vector<double>& drive, double dt);
+  void update_layer_stress(double dt);
   void move_nodes(double dt);
 
   Base base_;
   Eigen::Vector2d gravity_;
+  double gravity_ramp_ = 0, gravity_scale_ = 1;  // scene.gravity.ramp, gravity_factor
   BasalLaw law_;
   DamSpec options_;
   double density_ = 0, courant_ = 0;
+  double modulus_ = 0;  // 4 G: the layer's deviator per unit longitudinal strain
   std::vector<double> s_, v_, node_mass_;
   std::vector<double> volume_, xi_, gamma_dot_, tau_;
+  std::vector<double> q_, layer_xi_;
   std::vector<Slope> slopes_;  // at each element's mid-point, for the current nodes
   double time_ = 0, last_dt_ = 0;
   long steps_ = 0;

@@ -94,12 +94,20 @@ struct BaseSpec {
   double friction = 0.0;           // mu, Coulomb
 };
 
+// The depth-integrated longitudinal stress of the depth-averaged model
+// (docs/dam.md, "Longitudinal stress"). Rankine: the hydrostatic thrust
+// minus h times the layer's deviator, elastic up to the active (-2 su) and
+// passive (+2 su) limits; Hydrostatic: earth-pressure coefficient K = 1,
+// no strength inside the layer.
+enum class EarthPressure { Rankine, Hydrostatic };
+
 // The depth-averaged model (docs/dam.md); read by it alone.
 struct DamSpec {
-  // Linear: 2 |v| / h; Plug: |v| / (h_s (1 - h_s / (2 h))), h_s the sheared layer.
+  // Linear: 2 |v| / h; Plug: the basal rate of a Herschel-Bulkley plug flow
+  // with the strength law as its rheology (its sheared layer follows from it).
   ShearRateEstimate shear_rate = ShearRateEstimate::Linear;
+  EarthPressure earth_pressure = EarthPressure::Rankine;
   int elements = 0;              // 0: the body's initial length over grid.cell_size
-  double min_shear_layer = 0.1;  // Plug: h_s >= min_shear_layer h
 };
 
 struct OutputSpec {
