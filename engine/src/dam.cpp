@@ -57,20 +57,19 @@ struct PlugFlow {
     const double f = std::exp(x);
     return (1.0 + n) + f / (1.0 - f) - n * c * f / (1.0 - c * f);
   }
-  // Newton's method kept inside a bracket [lo, 0) where phi changes sign
-  // (bisection whenever a step leaves it): phi is steep near f = 1 and
-  // almost linear for small f, so neither alone is safe.
+  // Newton's method from the small-f estimate phi = constant + (1 + n) x
+  // + O(f), kept inside the bracket (lo, hi) where phi changes sign
+  // (bisection whenever a step leaves it): phi is steep near f = 1, so
+  // Newton alone is not safe there. Only a step from phi <= 0, which has set
+  // a finite lo, can leave the bracket: from phi > 0 Newton moves left.
   double root() const {
-    double lo = std::min(-1e-3, -constant / (1.0 + n)), hi = 0.0;
-    while (phi(lo) > 0.0) lo -= std::max(1.0, std::abs(lo));
-    double x = lo;
-    for (int k = 0; k < 200; ++k) {
+    double x = std::min(-constant / (1.0 + n), -1e-3), lo = -kInfinity, hi = 0.0;
+    for (int k = 0; k < 100; ++k) {
       const double value = phi(x);
       (value > 0.0 ? hi : lo) = x;
-      double next = x - value / slope(x);
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      if (std::abs(next - x) <= 1e-15 * std::max(1.0, std::abs(x))) return next;
-      x = next;
+      const double next = x - value / slope(x);
+      if (std::abs(next - x) <= 1e-13 * std::max(1.0, std::abs(x))) return next;
+      x = next > lo && next < hi ? next : 0.5 * (lo + hi);
     }
     return x;
   }
