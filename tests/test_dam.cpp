@@ -369,6 +369,28 @@ TEST(Dam, MassAtRestBelowItsStrengthStaysAtRest) {
   EXPECT_EQ(dam.s().back(), 20.0);
 }
 
+TEST(Dam, ABaseSlidingOnAWeakerInterfaceDoesNotRemould) {
+  // A sensitive clay (St = 40, su0 = 5 kPa) on 20 degrees, driving stress
+  // 6.7 kPa: on a 1 kPa frictional interface the layer slides on it and its
+  // base never fails (xi_b stays 0, tau = 1 kPa); on a no-slip base the
+  // clay itself fails at its base and remoulds.
+  Scene s = layer_scene(400.0, 1.0, 20.0, 2000.0, 1000.0);
+  s.materials[0].su0 = 5000.0;
+  s.materials[0].sensitivity = 40.0;
+  for (InterfaceKind interface : {InterfaceKind::Frictional, InterfaceKind::NoSlip}) {
+    s.base.interface = interface;
+    DamSolver dam(with_elements(s, 400));
+    dam.advance_to(2.0);
+    ASSERT_GT(dam.v()[200], 0.0);
+    if (interface == InterfaceKind::Frictional) {
+      for (int e = 0; e < dam.elements(); ++e) EXPECT_EQ(dam.xi()[e], 0.0) << "at " << e;
+      EXPECT_EQ(dam.tau()[200], 1000.0);
+    } else {
+      EXPECT_GT(dam.xi()[200], 0.0);
+    }
+  }
+}
+
 TEST(Dam, LinearShearRateIsTwiceTheSpeedOverTheThickness) {
   const double rho = 2000.0, h = 1.0, tau = 1000.0, theta = 20.0;
   DamSolver dam(with_elements(layer_scene(400.0, h, theta, rho, tau), 400));

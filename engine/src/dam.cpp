@@ -77,16 +77,6 @@ struct PlugFlow {
 
 }  // namespace
 
-double BasalLaw::resistance(double xi, double gamma_dot, double normal_stress) const {
-  const double su = runout::strength(strength, xi, gamma_dot);
-  switch (interface) {
-    case InterfaceKind::Frictional: return std::min(tau, su);
-    case InterfaceKind::Coulomb: return std::min(mu * normal_stress, su);
-    case InterfaceKind::NoSlip: break;
-  }
-  return su;
-}
-
 double BasalLaw::interface_limit(double normal_stress) const {
   switch (interface) {
     case InterfaceKind::Frictional: return tau;
@@ -270,14 +260,19 @@ double DamSolver::basal_shear_rate(int e, double sigma_n) const {
   return plug_flow_shear_rate(law_.strength, xi_[e], speed, h, law_.interface_limit(sigma_n));
 }
 
-// The basal resistance of every element at its current rate, and the
-// softening variable xi_b advanced by gamma_dot dt.
+// The basal resistance of every element at its current rate: the clay's
+// strength, capped by the interface. The softening variable xi_b advances
+// by gamma_dot dt only where the clay fails at its base: on an interface
+// weaker than the clay the layer slides on it, and its base is not sheared
+// plastically (as in the MPM, where slip at the interface is no plastic strain).
 void DamSolver::update_basal_state(double dt) {
   for (int e = 0; e < elements(); ++e) {
     const double sigma_n = density_ * g_n(e) * thickness(e);
     gamma_dot_[e] = basal_shear_rate(e, sigma_n);
-    tau_[e] = law_.resistance(xi_[e], gamma_dot_[e], sigma_n);
-    xi_[e] += gamma_dot_[e] * dt;
+    const double su = strength(law_.strength, xi_[e], gamma_dot_[e]);
+    const double cap = law_.interface_limit(sigma_n);
+    tau_[e] = std::min(su, cap);
+    if (su <= cap) xi_[e] += gamma_dot_[e] * dt;
   }
 }
 

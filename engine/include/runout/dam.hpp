@@ -33,17 +33,15 @@
 
 namespace runout {
 
-// The limiting shear stress on the base of an element of the given
-// thickness: the strength law (no-slip: failure in the layer at its base),
-// capped by the interface (frictional tau, Coulomb mu sigma_n).
+// The limiting shear stress on the base of an element: the strength law
+// (no-slip: failure in the layer at its base), capped by the interface's
+// own limit (frictional tau, Coulomb mu sigma_n; infinite for no-slip).
 struct BasalLaw {
   InterfaceKind interface = InterfaceKind::NoSlip;
   double tau = 0;           // Frictional
   double mu = 0;            // Coulomb
   StrengthParams strength;
 
-  double resistance(double xi, double gamma_dot, double normal_stress) const;
-  // The interface's own limit (infinite for no-slip, where the clay fails).
   double interface_limit(double normal_stress) const;
 };
 
