@@ -444,6 +444,7 @@ TEST(DamCli, EscarpmentWritesHistoryAndPvd) {
   const std::string vtp = read_text(dir / "frame_00001.vtp");
   for (const char* name : {"\"TimeValue\"", "\"base_points\"", "\"thickness\"", "\"velocity\"",
                            "\"strength\"", "\"shear_strain_rate\"", "\"plastic_shear_strain\"",
+                           "\"longitudinal_deviator\"", "\"layer_plastic_shear_strain\"",
                            "NumberOfLines=\"1\""})
     EXPECT_NE(vtp.find(name), std::string::npos) << name;
   EXPECT_EQ(vtp.find("appended"), std::string::npos);

@@ -82,6 +82,8 @@ void write_dam_vtp(const std::string& path, const DamSolver& dam,
   array("strength", 1, dam.tau());
   array("shear_strain_rate", 1, dam.gamma_dot());
   array("plastic_shear_strain", 1, dam.xi());
+  array("longitudinal_deviator", 1, dam.deviator());
+  array("layer_plastic_shear_strain", 1, dam.layer_xi());
   array("s", 1, per_element([&](int e) { return dam.mid(e); }));
   xml += "      </PointData>\n      <Points>\n";
   array("Points", 3, tuples<3>(n, [&](int e) {
