@@ -141,8 +141,9 @@ DamSolver::DamSolver(const Scene& scene)
   require_memory(scene, Method::Dam);
   const BodySpec& body = scene.bodies.front();
   const MaterialSpec& material = scene.materials[body.material];
-  // The layer's only resistance is the strength law at its base (docs/dam.md):
-  // an elastic body would spread like a fluid, which answers nothing.
+  // The layer resists through the strength law, at its base and in its
+  // longitudinal stress (docs/dam.md): an elastic body has none and would
+  // spread like a fluid, which answers nothing.
   if (material.model != MaterialModel::Tresca)
     throw SceneError("material " + material.name +
                          ": the depth-averaged method needs model = \"tresca\" (an elastic body "
