@@ -28,8 +28,8 @@ SCENES = {
 
 # variant name -> {(table, key): value as TOML text}
 VARIANTS = {
-    "default (FLIP, PIC share at 50 cell crossings)": {},
-    "pure FLIP": {("solver", "pic_cells"): "0"},
+    "default (pure FLIP, deforming domains)": {},
+    "FLIP, PIC share over 200 cell crossings": {("solver", "pic_cells"): "200"},
     "APIC": {("solver", "transfer"): '"apic"'},
     "per-step blend, flip 0.99": {("solver", "transfer"): '"pic_flip"', ("solver", "flip"): "0.99"},
     "fixed domains (uGIMP)": {("grid", "domain"): '"fixed"'},
