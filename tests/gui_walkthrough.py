@@ -1,0 +1,255 @@
+"""The Runout plugin in the real ParaView GUI, as docs/paraview.md walks a
+user through it: the `paraview` binary under Xvfb, the plugin loaded at
+start-up through PV_PLUGIN_PATH, a run opened with --data, then Qt events
+(ParaView's own test player, --test-script) that press Apply, pick each
+Runout filter from Filters > Alphabetical with the run selected in the
+Pipeline Browser and press Apply, and step through time with the VCR
+toolbar. Between the events, gui_steps.py records from the GUI's Python
+shell what the GUI made (views, representations, visibilities) and saves
+screenshots of the render view.
+
+It fails on any error or warning ParaView prints, and unless
+- the GUI made one render view and one line chart, no spreadsheet;
+- the particles stay shown, block outlines are Wireframe, the Strain Grid
+  an Outline, the chart shows the history's lengths;
+- at the last frame the screenshots show the particles and, over them, the
+  shear bands, the block outlines and the profile: each drawn alone marks
+  pixels, those pixels lie within the particles' picture, and in the
+  picture as the GUI shows it most of them still have the overlay's colour
+  (it is drawn, not covered), while most of the particles' pixels still
+  differ from the background (not covered by the outlines' polygons).
+
+Run by pvpython (for VTK's PNG reader and numpy):
+  pvpython tests/gui_walkthrough.py SOURCE_DIR RUNOUT_CLI PLUGIN_DIR PARAVIEW [KEEP_DIR]
+KEEP_DIR keeps the screenshots (docs/paraview.md's pictures come from it).
+Exits 77 (skipped) without xvfb-run or the paraview binary.
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+XVFB = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24 -noreset"]
+# The overlays first: Runout Plastic Strain's particles take the run's place
+# (ParaView's default), the overlays must leave it shown. The history last:
+# its chart becomes the active view, where the others would not be shown.
+OVERLAY_FILTERS = ("RunoutShearBands", "RunoutHorstGraben", "RunoutMorphology")
+FILTERS = OVERLAY_FILTERS + ("RunoutPlasticStrain", "RunoutMorphologyHistory")
+# ParaView's Qt object names (its test recorder writes the same).
+SHELL = "pqClientMainWindow/pythonShellDock/pythonShell/consoleWidget"
+APPLY = "pqClientMainWindow/propertiesDock/propertiesPanel/Accept"
+MENU = "pqClientMainWindow/menubar/menuFilters/Alphabetical"
+BROWSER = "pqClientMainWindow/pipelineBrowserDock/pipelineBrowser"
+VCR = "pqClientMainWindow/VCRToolbar/"
+# What ParaView prints for an error or a warning (the terminal copy of its
+# Output Messages window).
+PROBLEM = re.compile(r"ERR\|| WARN\||ERROR|Warning:|Error:")
+
+
+def fail(failures):
+    for failure in failures:
+        print("FAILED:", failure)
+    sys.exit(1 if failures else 0)
+
+
+def event(obj, command, arguments=""):
+    quote = (arguments.replace("&", "&amp;").replace('"', "&quot;")
+             .replace("<", "&lt;").replace(">", "&gt;"))
+    return f'  <pqevent object="{obj}" command="{command}" arguments="{quote}" />'
+
+
+def events(steps, config):
+    """The test script: Apply on the opened run, every filter on the run,
+    then the first frame, the last, and back one."""
+    def step(what, tag):
+        return event(SHELL, "executeCommand",
+                     f"exec(open({steps!r}).read()); runout_gui_step({what!r}, {tag!r}, "
+                     f"{config!r})")
+    lines = [event(APPLY, "activate"), step("record", "opened")]
+    for name in FILTERS:
+        # The run selected in the Pipeline Browser (its first source).
+        lines += [event(BROWSER, "mousePress", "1,1,0,50,5,/0:0/0:0"),
+                  event(BROWSER, "mouseRelease", "1,0,0,50,5,/0:0/0:0"),
+                  event(MENU, "activate", name), event(APPLY, "activate")]
+        if name == OVERLAY_FILTERS[-1]:
+            lines.append(step("record", "overlays"))
+    lines += [step("record", "applied"), event(VCR + "actionVCRLastFrame", "activate"),
+              step("record", "last"), event(VCR + "actionVCRPreviousFrame", "activate"),
+              step("record", "previous"), step("finish", "")]
+    return "<?xml version=\"1.0\" ?>\n<pqevents>\n" + "\n".join(lines) + "\n</pqevents>\n"
+
+
+def pixels(path):
+    """(height, width, 3) int array of a PNG, top row first."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    data = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int)
+    return data.reshape(height, width, 3)[::-1]
+
+
+def check_step(step, failures):
+    """The pixel checks of one recorded step's screenshots."""
+    import numpy
+    shots = {part: pixels(path) for part, path in step["shots"].items()}
+    background = shots["none"]
+
+    def drawn(part):
+        return numpy.abs(shots[part] - background).max(axis=2) > 40
+
+    particles = drawn("particles")
+    gui = shots["gui"]
+    count = int(particles.sum())
+    print(f"{step['tag']} (t = {step['time']:g}): particles {count} px", end="")
+    if count < 2000:
+        failures.append(f"{step['tag']}: the particles cover {count} pixels alone")
+        return
+    rows, cols = numpy.nonzero(particles)
+    box = (rows.min() - 15, rows.max() + 15, cols.min() - 15, cols.max() + 15)
+    # Lines cross the particles; polygons drawn as surfaces would cover them
+    # (in a light grey that differs from the white particles by only 20 to
+    # 40 per channel: the same session renders what is not covered alike).
+    still = numpy.abs(gui - shots["particles"]).max(axis=2)[particles] <= 12
+    print(f" {still.mean():.0%} shown", end="")
+    if still.mean() < 0.5:
+        failures.append(f"{step['tag']}: only {still.mean():.0%} of the particles' pixels are "
+                        "shown in the GUI's picture (covered?)")
+    for part in ("bands", "blocks", "profile"):
+        mask = drawn(part)
+        n = int(mask.sum())
+        cells = step["counts"].get(part, [0, 0])[1]
+        print(f", {part} {n} px ({cells} cells)", end="")
+        if cells == 0:
+            continue  # nothing to draw at this frame (e.g. no bands at t = 0)
+        if n < 20:
+            failures.append(f"{step['tag']}: {part} ({cells} cells) draw {n} pixels alone")
+            continue
+        r, c = numpy.nonzero(mask)
+        inside = ((r >= box[0]) & (r <= box[1]) & (c >= box[2]) & (c <= box[3])).mean()
+        if inside < 0.9:
+            failures.append(f"{step['tag']}: {part}: {inside:.0%} of its pixels over the particles")
+        # Where the overlay alone and the particles alone look different,
+        # the GUI's picture must look like the overlay: drawn over them, not
+        # hidden behind them (antialiased lines blend, hence "closer").
+        alone, under, shown = shots[part][mask], shots["particles"][mask], gui[mask]
+        distinct = numpy.abs(alone - under).max(axis=1) > 40
+        if distinct.sum() < 10:
+            failures.append(f"{step['tag']}: {part}: {int(distinct.sum())} of its pixels differ "
+                            "from the particles under them: not told apart")
+            continue
+        closer = (numpy.abs(shown - alone).sum(axis=1) < numpy.abs(shown - under).sum(axis=1))
+        kept = closer[distinct].mean()
+        print(f" {kept:.0%} on top", end="")
+        if kept < 0.6:
+            failures.append(f"{step['tag']}: {part}: {kept:.0%} of its pixels shown over the "
+                            "particles in the GUI's picture (hidden behind them?)")
+    print()
+
+
+def check_record(record, failures):
+    steps = {step["tag"]: step for step in record["steps"]}
+    if sorted(steps) != ["applied", "last", "opened", "overlays", "previous"]:
+        failures.append(f"recorded steps {sorted(steps)}")
+        return
+    applied = steps["applied"]
+    for name in FILTERS:
+        if name not in applied["sources"]:
+            failures.append(f"{name} not in the pipeline after its Apply: {applied['sources']}")
+    views = sorted(applied["views"])
+    if views != ["RenderView", "XYChartView"]:
+        failures.append(f"views after the walk-through: {views} (one render view, one chart)")
+    reps = {(r["source"], r["port"], r["view"]): r for r in applied["representations"]}
+
+    def rep(source, port, view="RenderView"):
+        return reps.get((source, port, view), {})
+
+    overlays = {(r["source"], r["port"], r["view"]): r for r in steps["overlays"]["representations"]}
+    if not overlays.get(("PVDReader", 0, "RenderView"), {}).get("visible"):
+        failures.append("the run's particles are hidden once the overlay filters are applied")
+    if not rep("RunoutPlasticStrain", 0).get("visible"):
+        failures.append("Runout Plastic Strain's particles are not shown after its Apply")
+    for source, port, kind in (("RunoutHorstGraben", 0, "Wireframe"),
+                               ("RunoutPlasticStrain", 1, "Outline")):
+        if rep(source, port).get("representation") != kind:
+            failures.append(f"{source} port {port} shown as {rep(source, port)}, not {kind}")
+    for source in ("RunoutShearBands", "RunoutHorstGraben", "RunoutMorphology"):
+        if not rep(source, 0).get("visible"):
+            failures.append(f"{source} is not shown in the render view")
+    chart = rep("RunoutMorphologyHistory", 1, "XYChartView")
+    shown = sorted(chart.get("series", []))
+    if shown != sorted(["toe (m)", "rear (m)", "runout (m)", "length (m)",
+                        "max_thickness (m)"]):
+        failures.append(f"the history chart shows {shown}")
+    times = [steps[t]["time"] for t in ("opened", "last", "previous")]
+    if not times[0] < times[2] < times[1]:
+        failures.append(f"times at open, last, previous frame: {times}")
+    for tag in ("last", "previous"):
+        check_step(steps[tag], failures)
+    for part in ("bands", "blocks"):
+        if not steps["last"]["counts"].get(part, [0, 0])[1]:
+            failures.append(f"no {part} at the last frame: the run shows nothing to check")
+
+
+def main():
+    if sys.argv[1] == "--check":  # the checks alone, on a kept record
+        failures = []
+        with open(sys.argv[2]) as f:
+            check_record(json.load(f), failures)
+        fail(failures)
+    source, cli, plugin_dir, paraview = sys.argv[1:5]
+    keep = sys.argv[5] if len(sys.argv) > 5 else None
+    if not shutil.which("xvfb-run") or not paraview or not os.path.isfile(paraview):
+        print("no xvfb-run or paraview: skipped")
+        sys.exit(77)
+    work = tempfile.mkdtemp(prefix="runout_gui_")
+    try:
+        run_dir = os.path.join(work, "run")
+        subprocess.run([cli, "run", "--cell", "0.7", "--ppc", "2", "--end", "14", "--out",
+                        run_dir, "-q"], check=True)
+        folder = keep or os.path.join(work, "shots")
+        os.makedirs(folder, exist_ok=True)
+        config = os.path.join(work, "config.json")
+        result = os.path.join(work, "result.json")
+        with open(config, "w") as f:
+            json.dump({"folder": folder, "result": result}, f)
+        script = os.path.join(work, "events.xml")
+        with open(script, "w") as f:
+            f.write(events(os.path.join(source, "tests", "gui_steps.py"), config))
+        # A HOME of its own: no settings or recent files of the user's.
+        env = dict(os.environ, HOME=os.path.join(work, "home"), PV_PLUGIN_PATH=plugin_dir)
+        os.makedirs(env["HOME"])
+        start = time.time()
+        # timeout inside xvfb-run: a hung GUI is killed, not left running.
+        proc = subprocess.run(XVFB + ["timeout", "-k", "5", "200", paraview,
+                                      "--data=" + os.path.join(run_dir, "default.pvd"),
+                                      "--test-script=" + script, "--exit"],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              env=env)
+        print(f"paraview ran {time.time() - start:.0f} s, exit {proc.returncode}")
+        failures = []
+        problems = [line for line in proc.stdout.splitlines() if PROBLEM.search(line)]
+        for line in problems:
+            print("paraview:", line)
+        if problems:
+            failures.append(f"{len(problems)} error or warning lines from paraview")
+        if not os.path.isfile(result):
+            print(proc.stdout)
+            failures.append("the GUI steps did not finish (no record)")
+            fail(failures)
+        with open(result) as f:
+            record = json.load(f)
+        check_record(record, failures)
+        fail(failures)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+main()
