@@ -30,7 +30,14 @@ def state_filters(state):
 def load(state, run_dir, plugin):
     """LoadState with the state's reader (registered as "run") pointed at
     the run's .pvd, whatever its name."""
-    runout_pv.load_plugin(plugin)
+    try:
+        runout_pv.load_plugin(plugin)
+    except RuntimeError:
+        pass  # reported below
+    if not hasattr(simple, "RunoutShearBands"):
+        # ParaView's state loader would print two errors per Runout proxy
+        # and drop them: one line instead.
+        sys.exit(f"ERROR: the Runout plugin is not loaded ({plugin}): not loading {state}")
     with open(state) as f:
         reader_id = re.search(r'<Proxy group="sources" type="PVDReader" id="(\d+)"',
                               f.read()).group(1)

@@ -204,7 +204,7 @@ def main():
         with open(sys.argv[2]) as f:
             check_record(json.load(f), failures)
         fail(failures)
-    source, cli, plugin_dir, paraview = sys.argv[1:5]
+    source, cli, plugin_dir, paraview = [os.path.abspath(a) for a in sys.argv[1:5]]
     keep = sys.argv[5] if len(sys.argv) > 5 else None
     if not shutil.which("xvfb-run") or not paraview or not os.path.isfile(paraview):
         print("no xvfb-run or paraview: skipped")
