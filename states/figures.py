@@ -86,6 +86,21 @@ def chosen_times(option, steps):
     return sorted(set(picks))
 
 
+NICE_FACTORS = (1, 2, 3, 5, 10, 20, 30, 50, 100)
+
+
+def exaggeration_for(bounds, size, fill=0.52, share=0.35):
+    """The vertical exaggeration (a round factor) that makes a slide of
+    these bounds, its length across the picture (fit_camera's fill), about
+    `share` of the picture's height: a 130 m long, 2 m thick slide at its
+    true shape is a thin strip of a 1200 x 600 picture."""
+    length, thickness = bounds[1] - bounds[0], bounds[3] - bounds[2]
+    if not (length > 0 and thickness > 0):
+        return 1
+    wanted = share * 2 * fill * length * size[1] / size[0] / thickness
+    return builtins.max([f for f in NICE_FACTORS if f <= wanted] or [1])
+
+
 def largest_speed(run_dir):
     """The largest particle speed of the run (history.csv's max_speed),
     one colour range for every velocity picture."""
@@ -123,13 +138,29 @@ class Figures:
         simple.RemoveViewsAndLayouts()
 
     # 1. Velocity magnitude on the particles.
+    def run_bounds(self):
+        """The particles' bounds over the chosen times and the first and
+        last frames, so that pictures of one run compare."""
+        bounds = [1e300, -1e300, 1e300, -1e300]
+        for t in set(self.times + [self.steps[-1], self.steps[0]]):
+            runout_pv.set_time(t)
+            self.reader.UpdatePipeline(t)
+            b = self.reader.GetDataInformation().GetBounds()
+            bounds = [builtins.min(bounds[0], b[0]), builtins.max(bounds[1], b[1]),
+                      builtins.min(bounds[2], b[2]), builtins.max(bounds[3], b[3])]
+        return bounds
+
     def velocity_view(self, layout_name):
         layout = simple.CreateLayout(layout_name)
         view = runout_pv.render_view()
         simple.AssignViewToLayout(view=view, layout=layout, hint=0)
+        self.bounds = self.run_bounds()
+        self.factor = exaggeration_for(self.bounds, self.size)
+        scale = [1.0, float(self.factor), 1.0]
         base = runout_pv.base_line(self.reader)
-        runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0)
-        particles = runout_pv.show(self.reader, view, Representation="Points", PointSize=4.0)
+        runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0, scale=scale)
+        particles = runout_pv.show(self.reader, view, Representation="Points", PointSize=4.0,
+                                   scale=scale)
         speed = largest_speed(self.options.out_dir)
         lut = runout_pv.colour_by(particles, view, "velocity", "velocity magnitude (m/s)",
                             preset="Turbo", component="Magnitude",
@@ -143,24 +174,21 @@ class Figures:
         return layout, view, text, map_ends(lut)
 
     def fit_to_run(self, view):
-        """The camera on the particles of the whole run (their bounds over
-        the chosen times and the last frame), so that pictures compare."""
-        bounds = [1e300, -1e300, 1e300, -1e300]
-        for t in set(self.times + [self.steps[-1], self.steps[0]]):
-            runout_pv.set_time(t)
-            self.reader.UpdatePipeline(t)
-            b = self.reader.GetDataInformation().GetBounds()
-            bounds = [builtins.min(bounds[0], b[0]), builtins.max(bounds[1], b[1]),
-                      builtins.min(bounds[2], b[2]), builtins.max(bounds[3], b[3])]
+        """The camera on the particles of the whole run (run_bounds)."""
         simple.Render(view)
-        runout_pv.fit_camera(view, bounds, fill=0.52)
+        runout_pv.fit_camera(view, self.bounds, exaggeration=[1.0, self.factor, 1.0], fill=0.52)
+
+    def label(self, t):
+        """The picture's caption: its time and its vertical exaggeration."""
+        return (f"t = {t:g} s, heights exaggerated {self.factor} x" if self.factor > 1
+                else f"t = {t:g} s, true scale")
 
     def velocity(self):
         layout, view, text, ends = self.velocity_view("velocity")
         self.fit_to_run(view)
         for t in self.times:
             runout_pv.set_time(t)
-            text.Text = f"t = {t:g} s"
+            text.Text = self.label(t)
             self.save(layout, f"velocity_t{t:07.2f}.png", ends,
                       f"velocity magnitude at t = {t:g} s")
         self.clear()
@@ -170,7 +198,7 @@ class Figures:
         self.fit_to_run(view)
         for i, t in enumerate(self.steps):
             runout_pv.set_time(t)
-            text.Text = f"t = {t:g} s"
+            text.Text = self.label(t)
             self.save(layout, os.path.join("animation", f"velocity_{i:05d}.png"), ends,
                       f"animation frame {i}, t = {t:g} s")
         self.clear()
@@ -185,6 +213,10 @@ class Figures:
         chart.LeftAxisTitle = "surface height y (m)"
         chart.LegendLocation = "TopRight"
         profile = simple.RunoutMorphology(registrationName="morphology", Input=self.reader)
+        factor = self.fix_chart_scale(chart, profile)
+        chart.ChartTitle = ("upper surface of the slide (Runout Morphology, Profile), heights "
+                            f"exaggerated about {factor} x" if factor > 1 else
+                            "upper surface of the slide (Runout Morphology, Profile), true scale")
         colours = []
         for i, t in enumerate(self.times):
             at = simple.ForceTime(registrationName=f"profile at {t:g} s",
@@ -204,21 +236,50 @@ class Figures:
                   + ", ".join(f"{t:g}" for t in self.times) + " s")
         self.clear()
 
+    def fix_chart_scale(self, chart, profile):
+        """Axis ranges that give the chart a round vertical exaggeration
+        (about: the plot area is the picture less its margins, estimated),
+        which it returns. A chart scales each axis to its data, which makes
+        an exaggeration of its own, unstated."""
+        lo, hi = [1e300, 1e300], [-1e300, -1e300]
+        for t in self.times:
+            profile.UpdatePipeline(t)
+            b = profile.GetDataInformation(0).GetBounds()
+            if b[0] <= b[1]:
+                lo = [builtins.min(lo[0], b[0]), builtins.min(lo[1], b[2])]
+                hi = [builtins.max(hi[0], b[1]), builtins.max(hi[1], b[3])]
+        if not (lo[0] < hi[0] and lo[1] < hi[1]):
+            return 1
+        width, height = self.size[0] - 90, self.size[1] - 90  # the plot area, about
+        x_range = hi[0] - lo[0] + 10.0
+        y_low = builtins.min(0.0, lo[1])
+        wanted = height / width * x_range / (1.15 * (hi[1] - y_low))
+        factor = builtins.max([f for f in NICE_FACTORS if f <= wanted] or [1])
+        chart.BottomAxisUseCustomRange = 1
+        chart.BottomAxisRangeMinimum = lo[0] - 5.0
+        chart.BottomAxisRangeMaximum = hi[0] + 5.0
+        chart.LeftAxisUseCustomRange = 1
+        chart.LeftAxisRangeMinimum = y_low
+        chart.LeftAxisRangeMaximum = y_low + height / width * x_range / factor
+        return factor
+
     # 3. Plastic shear strain, shear bands, horsts and grabens.
     def strain_bands(self):
         t = self.times[-1]
         runout_pv.set_time(t)
+        bounds = self.reader.GetDataInformation().GetBounds()
+        self.factor = exaggeration_for(bounds, self.size)
         layout = simple.CreateLayout("strain bands")
         view = runout_pv.render_view()
         simple.AssignViewToLayout(view=view, layout=layout, hint=0)
-        lut = build_strain_bands(self.reader, view)[-1]
-        text = simple.Text(registrationName="time label", Text=f"t = {t:g} s")
+        lut = build_strain_bands(self.reader, view, [1.0, float(self.factor), 1.0])[-1]
+        text = simple.Text(registrationName="time label", Text=self.label(t))
         label = simple.Show(text, view)
         label.WindowLocation = "Upper Left Corner"
         label.Color = runout_pv.INK
         layout.SetSize(*self.size)
         simple.Render(view)
-        runout_pv.fit_camera(view, self.reader.GetDataInformation().GetBounds())
+        runout_pv.fit_camera(view, bounds, exaggeration=[1.0, self.factor, 1.0])
         self.save(layout, "strain_bands.png", map_ends(lut) + [rgb255(BAND_RED)],
                   f"plastic shear strain, shear bands and blocks at t = {t:g} s")
         self.clear()
@@ -239,7 +300,9 @@ class Figures:
             chart.BottomAxisTitle = "time (s)"
             chart.LegendLocation = "TopLeft" if column == "runout" else "TopRight"
             charts.append((chart, column))
-        layout.SplitVertical(0, 0.5)
+        # Side by side: stacked, each chart had half the height and its
+        # time axis's title ran into its tick labels.
+        layout.SplitHorizontal(0, 0.5)
         simple.AssignViewToLayout(view=charts[0][0], layout=layout, hint=1)
         simple.AssignViewToLayout(view=charts[1][0], layout=layout, hint=2)
         colours = []
@@ -266,7 +329,7 @@ class Figures:
                        "figures": self.manifest}, f, indent=1)
 
 
-def build_strain_bands(reader, view):
+def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION):
     """Figure 3's pipeline in a view: the particles coloured by their
     plastic shear strain, the base, the shear band skeletons (red) and the
     block outlines (black) over them (also the pipeline of
@@ -275,12 +338,13 @@ def build_strain_bands(reader, view):
     blocks = simple.RunoutHorstsAndGrabens(registrationName="horsts and grabens",
                                            Input=reader)
     base = runout_pv.base_line(reader)
-    runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0)
-    particles = runout_pv.show(reader, view, Representation="Points", PointSize=4.0)
+    runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0, scale=scale)
+    particles = runout_pv.show(reader, view, Representation="Points", PointSize=4.0,
+                               scale=scale)
     lut = runout_pv.colour_by(particles, view, "plastic_shear_strain",
                               "plastic shear strain")
-    runout_pv.show_lines(blocks, view, BLOCK_INK, width=2.0)
-    runout_pv.show_lines(bands, view, BAND_RED, z=2.0, width=3.0)
+    runout_pv.show_lines(blocks, view, BLOCK_INK, width=2.0, scale=scale)
+    runout_pv.show_lines(bands, view, BAND_RED, z=2.0, width=3.0, scale=scale)
     return bands, blocks, base, lut
 
 
