@@ -1,12 +1,18 @@
 // runout: the command line. Exit codes follow sysexits(3): 64 usage, 65 the
 // scene is invalid, 66 the scene file cannot be read, 70 the run blew up
 // (frames before it are kept), 69 the backend asked for cannot run here, 73
-// the output cannot be written. `resume`: 66 no checkpoint in the folder, 65
-// one that is corrupt or of another version.
+// the output cannot be written, 75 another runout writes into the output
+// folder. `resume`: 66 no checkpoint in the folder, 65 one that is corrupt,
+// of another version or of another run. A run stopped by SIGINT, SIGTERM or
+// SIGHUP exits 128 + the signal's number (130, 143, 129), as a shell
+// reports a process the signal killed.
 #include <omp.h>
+#include <signal.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -19,7 +25,9 @@
 #include "runout/device_info.hpp"
 #include "runout/materials.hpp"
 #include "runout/memory_estimate.hpp"
+#include "runout/atomic_file.hpp"
 #include "runout/run.hpp"
+#include "runout/run_control.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
 #ifdef RUNOUT_HAVE_CUDA
@@ -37,8 +45,31 @@ enum Exit {
   kNoScene = 66,
   kUnavailable = 69,
   kBlowUp = 70,
-  kCantCreate = 73
+  kCantCreate = 73,
+  kFolderBusy = 75,   // EX_TEMPFAIL: it may work once the other run is done
+  kSignalBase = 128
 };
+
+void on_stop_signal(int signal) { request_stop(signal); }
+
+// The first SIGINT, SIGTERM or SIGHUP asks the run to stop at the next step
+// and checkpoint; SA_RESETHAND lets a second one kill it at once.
+void stop_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &action, nullptr);
+}
+
+// A run the stop request ended: what is kept and how to go on; the exit code.
+int report_stop(const RunSummary& r, const RunOptions& opt, int signal) {
+  std::cerr << "runout: stopped by SIG" << sigabbrev_np(signal) << " at t = " << r.end_time
+            << " s; the " << r.frames << " frames written are kept in " << opt.out_dir << "\n";
+  if (!r.checkpoint_path.empty())
+    std::cerr << "runout: continue with: runout resume " << opt.out_dir << "\n";
+  return kSignalBase + signal;
+}
 
 struct SceneArgs {
   std::string path;  // empty: the built-in default scene
@@ -71,6 +102,17 @@ Scene load(const SceneArgs& a) {
   return s;
 }
 
+// A step count as an integer while it is one, so that a scene far beyond
+// any limit prints its count instead of an overflowed integer.
+std::string step_count_text(double steps) {
+  char buf[32];
+  if (std::isfinite(steps) && steps < 1e15)
+    std::snprintf(buf, sizeof buf, "%.0f", std::ceil(steps));
+  else
+    std::snprintf(buf, sizeof buf, "%.3g", steps);
+  return buf;
+}
+
 int check(const Scene& s) {
   Simulation sim(s);
   const double dt = sim.stable_dt();
@@ -82,7 +124,7 @@ int check(const Scene& s) {
   const std::optional<double> available = available_memory();
   std::cout << to_toml(s) << "\n# particles:        " << n << "\n# domain cells:     " << cells
             << "\n# initial dt:       " << dt << " s (Courant " << s.time.courant << ")"
-            << "\n# steps (about):    " << std::lround(s.time.end / dt)
+            << "\n# steps (about):    " << step_count_text(s.time.end / dt)
             << " (dt falls as the slide speeds up)"
             << "\n# memory (about):   " << byte_text(memory.bytes()) << " ("
             << byte_text(memory.item_bytes) << " per "
@@ -145,6 +187,10 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
     progress.finish();
     std::cerr << "runout: cannot resume: " << e.what() << "\n";
     return kSceneInvalid;
+  } catch (const OutputFolderBusy& e) {
+    progress.finish();
+    std::cerr << "runout: " << e.what() << "\n";
+    return kFolderBusy;
   } catch (const std::exception& e) {
     progress.finish();
     std::cerr << "runout: cannot write the output: " << e.what() << "\n";
@@ -173,6 +219,7 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
                 << r.checkpoint_path << "\n";
     return kBlowUp;
   }
+  if (const int signal = stopped_by()) return report_stop(r, opt, signal);
   return kOk;
 }
 
@@ -273,6 +320,7 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   if (threads > 0) omp_set_num_threads(threads);
+  if (*run_cmd || *resume_cmd) stop_on_signals();
   try {
     if (*run_cmd) return run(load(run_args), out, backend, quiet, checkpoint_every);
     if (*resume_cmd) return resume(resume_dir, backend, quiet);

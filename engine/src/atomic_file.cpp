@@ -1,11 +1,15 @@
 #include "runout/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 namespace runout {
@@ -37,7 +41,71 @@ bool write_all(int fd, std::string_view contents) {
   return true;
 }
 
+// The folder locks this process holds: descriptor and depth, by folder.
+struct HeldLock {
+  int fd;
+  int depth;
+};
+std::mutex held_mutex;
+std::map<std::string, HeldLock> held;
+
+std::string lock_key(const std::string& dir) {
+  return std::filesystem::weakly_canonical(std::filesystem::absolute(dir)).string();
+}
+
+// The pid the holder wrote into the lock file, or "unknown".
+std::string holder_pid(int fd) {
+  char buf[32] = {};
+  const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+  std::string pid(buf, n > 0 ? static_cast<std::size_t>(n) : 0);
+  while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+  return pid.empty() ? "unknown" : pid;
+}
+
 }  // namespace
+
+bool is_atomic_temporary(const std::string& name) {
+  return !name.empty() && name[0] == '.' && name.find(".tmp.") != std::string::npos;
+}
+
+void lock_output_folder(const std::string& dir) {
+  const std::string key = lock_key(dir);
+  const std::lock_guard<std::mutex> guard(held_mutex);
+  if (const auto it = held.find(key); it != held.end()) {
+    ++it->second.depth;
+    return;
+  }
+  const std::string path = (std::filesystem::path(dir) / kOutputLockFile).string();
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0)
+    throw std::runtime_error("cannot create the lock file " + path + ": " + std::strerror(errno));
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    const std::string pid = holder_pid(fd);
+    ::close(fd);
+    if (error == EWOULDBLOCK)
+      throw OutputFolderBusy("the output folder " + dir + " is in use by another runout (pid " +
+                             pid + "); wait for it to end or choose another --out");
+    throw std::runtime_error("cannot lock " + path + ": " + std::strerror(error));
+  }
+  // The pid is for the message of a refused second writer only: the lock
+  // itself is the flock, so a stale pid in the file means nothing.
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) < 0) {
+    const int error = errno;
+    ::close(fd);
+    throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
+  }
+  held[key] = HeldLock{fd, 1};
+}
+
+void unlock_output_folder(const std::string& dir) {
+  const std::lock_guard<std::mutex> guard(held_mutex);
+  const auto it = held.find(lock_key(dir));
+  if (it == held.end() || --it->second.depth > 0) return;
+  ::close(it->second.fd);  // drops the flock
+  held.erase(it);
+}
 
 void write_file_atomically(const std::string& path, std::string_view contents) {
   const std::string temp = temporary_name(path);

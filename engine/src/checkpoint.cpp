@@ -1,6 +1,14 @@
 #include "runout/checkpoint.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -136,6 +144,14 @@ void put_state(Writer& w, const CheckpointState& s) {
   }
 }
 
+// Whether a file name read back is frame_<index>.vtu, the name the run
+// schedule gives that frame.
+bool frame_name_at(const std::string& name, std::size_t index) {
+  char expected[32];
+  std::snprintf(expected, sizeof expected, "frame_%05zu.vtu", index);
+  return name == expected;
+}
+
 CheckpointState get_state(Reader& r) {
   CheckpointState s;
   s.scene_toml = r.get_text();
@@ -160,11 +176,79 @@ CheckpointState get_state(Reader& r) {
     const double time = r.get<double>();
     k.pvd.emplace_back(time, r.get_text());
   }
-  if (k.row < 0 || k.checkpoint_rows < 1 || frames < 0 ||
+  // checkpoint_rows 0: a run without --checkpoint-every, stopped by a signal.
+  if (k.row < 0 || k.checkpoint_rows < 0 || frames < 0 ||
       frames != static_cast<std::int64_t>(k.pvd.size()) || c.steps < 0)
     r.fail("inconsistent counters");
+  if (!std::isfinite(c.time) || c.time < 0 || !std::isfinite(c.last_dt) || c.last_dt < 0)
+    r.fail("a time or time step that is negative or not finite");
   k.frames = static_cast<int>(frames);
+  // The index names the frames the folder holds: nothing else (a path out
+  // of the folder) may come back into it.
+  for (std::size_t e = 0; e < k.pvd.size(); ++e)
+    if (!frame_name_at(k.pvd[e].second, e)) r.fail("index entry " + std::to_string(e) +
+                                                   " is not frame " + std::to_string(e));
   return s;
+}
+
+std::string hex(std::uint64_t value) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(value));
+  return buf;
+}
+
+// The whole of a regular file whose first kHeaderBytes are checked by
+// check_header before the rest is read.
+std::string read_regular_file(const std::string& path,
+                              void (*check_header)(std::string_view, std::uint64_t,
+                                                   const std::string&)) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw CheckpointMissing("cannot open checkpoint '" + path + "'");
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw CheckpointError("cannot stat checkpoint '" + path + "'");
+  if (!S_ISREG(st.st_mode))
+    throw CheckpointError(path + ": not a regular file (a device, a pipe or a folder)");
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  std::string bytes(std::min<std::uint64_t>(size, kHeaderBytes), '\0');
+  const auto read_into = [&](std::size_t from) {
+    std::size_t at = from;
+    while (at < bytes.size()) {
+      const ssize_t n = ::pread(fd, bytes.data() + at, bytes.size() - at, at);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) throw CheckpointError("cannot read checkpoint '" + path + "'");
+      at += static_cast<std::size_t>(n);
+    }
+  };
+  read_into(0);
+  check_header(bytes, size, path);
+  bytes.resize(size);  // the header vouches for this size: it is the file's
+  read_into(kHeaderBytes);
+  return bytes;
+}
+
+// Magic, version, and a stated payload size that is the file's real one.
+void check_header(std::string_view bytes, std::uint64_t file_size, const std::string& source) {
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw CheckpointError(source + ": not a Runout checkpoint (no RUNOUTCK header)");
+  if (file_size < kHeaderBytes + kChecksumBytes)
+    throw CheckpointError(source + ": truncated: " + std::to_string(file_size) +
+                          " bytes, shorter than the header");
+  std::uint32_t version;
+  std::uint64_t size;
+  std::memcpy(&version, bytes.data() + sizeof kMagic, sizeof version);
+  std::memcpy(&size, bytes.data() + sizeof kMagic + 4, sizeof size);
+  if (version != kVersion)
+    throw CheckpointError(source + ": checkpoint format version " + std::to_string(version) +
+                          ", this runout reads version " + std::to_string(kVersion));
+  const std::uint64_t body = file_size - kHeaderBytes - kChecksumBytes;
+  if (size != body)
+    throw CheckpointError(source + ": truncated or padded: the header gives " +
+                          std::to_string(size) + " bytes of data, the file holds " +
+                          std::to_string(body));
 }
 
 }  // namespace
@@ -183,23 +267,8 @@ std::string encode_checkpoint(const CheckpointState& state, const Particles& par
 }
 
 Checkpoint decode_checkpoint(std::string_view bytes, const std::string& source) {
-  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
-    throw CheckpointError(source + ": not a Runout checkpoint (no RUNOUTCK header)");
-  if (bytes.size() < kHeaderBytes + kChecksumBytes)
-    throw CheckpointError(source + ": truncated: " + std::to_string(bytes.size()) +
-                          " bytes, shorter than the header");
-  std::uint32_t version;
-  std::uint64_t size;
-  std::memcpy(&version, bytes.data() + sizeof kMagic, sizeof version);
-  std::memcpy(&size, bytes.data() + sizeof kMagic + 4, sizeof size);
-  if (version != kVersion)
-    throw CheckpointError(source + ": checkpoint format version " + std::to_string(version) +
-                          ", this runout reads version " + std::to_string(kVersion));
+  check_header(bytes, bytes.size(), source);
   const std::size_t body = bytes.size() - kHeaderBytes - kChecksumBytes;
-  if (size != body)
-    throw CheckpointError(source + ": truncated or padded: the header gives " +
-                          std::to_string(size) + " bytes of data, the file holds " +
-                          std::to_string(body));
   std::uint64_t stored;
   std::memcpy(&stored, bytes.data() + bytes.size() - kChecksumBytes, sizeof stored);
   if (stored != fnv1a(bytes.substr(0, bytes.size() - kChecksumBytes)))
@@ -219,11 +288,40 @@ void write_checkpoint(const std::string& path, const CheckpointState& state,
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CheckpointMissing("cannot open checkpoint '" + path + "'");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw CheckpointError("cannot read checkpoint '" + path + "'");
-  return decode_checkpoint(bytes, path);
+  return decode_checkpoint(read_regular_file(path, check_header), path);
+}
+
+std::uint64_t scene_hash(std::string_view scene_toml) { return fnv1a(scene_toml); }
+
+void require_same_scene(const CheckpointState& state, const std::string& resolved_path,
+                        const std::string& source) {
+  std::ifstream in(resolved_path, std::ios::binary);
+  if (!in)
+    throw CheckpointError(source + ": the run folder has no " + resolved_path +
+                          " to check the checkpoint against");
+  const std::string resolved((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+  const std::uint64_t folder = scene_hash(resolved), own = scene_hash(state.scene_toml);
+  if (folder != own)
+    throw CheckpointError(source + ": the checkpoint belongs to another run: its scene (hash " +
+                          hex(own) + ") is not the folder's " + resolved_path + " (hash " +
+                          hex(folder) + ")");
+}
+
+void require_particles_fit(const Particles& P, const Scene& scene, const std::string& source) {
+  const auto outside = [](int index, std::size_t count) {
+    return index < 0 || static_cast<std::size_t>(index) >= count;
+  };
+  for (int p = 0; p < P.size(); ++p) {
+    if (outside(P.material[p], scene.materials.size()))
+      throw CheckpointError(source + ": particle " + std::to_string(p) + " has material_id " +
+                            std::to_string(P.material[p]) + ", the scene has " +
+                            std::to_string(scene.materials.size()) + " materials");
+    if (outside(P.body[p], scene.bodies.size()))
+      throw CheckpointError(source + ": particle " + std::to_string(p) + " has body_id " +
+                            std::to_string(P.body[p]) + ", the scene has " +
+                            std::to_string(scene.bodies.size()) + " bodies");
+  }
 }
 
 }  // namespace runout

@@ -33,6 +33,7 @@ RunSummary run_dam(const Scene& scene, const RunOptions& options) {
     throw std::invalid_argument("the depth-averaged model writes no checkpoints");
   DamSolver dam(scene);  // before the folder: a scene it cannot run leaves none
   const fs::path dir = prepare_folder(scene, options);
+  const AdoptedFolderLock lock(dir.string());
 
   RunSummary summary;
   summary.particles = dam.elements();
@@ -56,7 +57,11 @@ RunSummary run_dam(const Scene& scene, const RunOptions& options) {
     history.append(row);
     return rest.at_rest(row.time, row.kinetic_energy);
   };
-  run_schedule(scene, options, start, dam, 0, record, write_frame, 0, [](long) {}, summary);
+  const auto at_rest = [&] {
+    return rest.at_rest(dam.time(), dam_history_row(dam, initial_toe).kinetic_energy);
+  };
+  run_schedule(scene, options, start, dam, 0, record, write_frame, 0, [](long) {}, at_rest,
+               summary);
   return summary;
 }
 

@@ -12,9 +12,11 @@
 
 #include "runout/atomic_file.hpp"
 #include "runout/checkpoint.hpp"
+#include "runout/dam.hpp"
 #include "runout/history.hpp"
 #include "runout/morphology.hpp"
 #include "runout/run.hpp"
+#include "runout/run_control.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
 #include "runout/vtu_writer.hpp"
@@ -26,14 +28,16 @@ namespace fs = std::filesystem;
 inline constexpr int kHistoryPerFrame = 10;
 
 // A run replaces what an earlier run left in the same folder, so that no
-// stale frame of a longer run is left beside the new index.
+// stale frame of a longer run is left beside the new index; temporaries of
+// writes a killed run never finished go too (the folder's lock says no
+// live writer owns them).
 inline void clear_previous_output(const fs::path& dir) {
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
     const std::string ext = entry.path().extension().string();
     const bool profile = name.rfind("profile_", 0) == 0 && ext == ".csv";
     if (ext == ".vtu" || ext == ".vtp" || ext == ".pvd" || profile || name == "history.csv" ||
-        name == "scene.resolved.toml" || name == kCheckpointFile)
+        name == "scene.resolved.toml" || name == kCheckpointFile || is_atomic_temporary(name))
       fs::remove(entry.path());
   }
 }
@@ -89,14 +93,68 @@ inline double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The output folder, emptied of an earlier run's files, with the resolved
+// The output folder, locked for this process (the caller releases it, see
+// AdoptedFolderLock), emptied of an earlier run's files, with the resolved
 // scene in it.
 inline fs::path prepare_folder(const Scene& scene, const RunOptions& options) {
   const fs::path dir(options.out_dir);
   fs::create_directories(dir);
-  clear_previous_output(dir);
-  write_file_atomically((dir / "scene.resolved.toml").string(), to_toml(scene));
+  lock_output_folder(dir.string());
+  try {
+    clear_previous_output(dir);
+    write_file_atomically((dir / "scene.resolved.toml").string(), to_toml(scene));
+  } catch (...) {
+    unlock_output_folder(dir.string());
+    throw;
+  }
   return dir;
+}
+
+// One step of model.advance_to(t), the same step it would take: the last
+// one is left to advance_to itself, which lands on t exactly. Taking steps
+// one at a time lets the run look at its state between them, and the
+// step depends on the state only, so a run resumed between rows takes the
+// steps an uninterrupted one takes.
+template <class Model>
+void step_toward(Model& model, double t) {
+  const double remaining = t - model.time();
+  const double n = std::ceil(remaining / model.stable_dt());
+  if (n <= 1.0)
+    model.advance_to(t);
+  else
+    model.step(remaining / n);
+}
+inline void step_toward(DamSolver& model, double t) {
+  const double dt = model.stable_dt();
+  if (t - model.time() <= dt)
+    model.advance_to(t);
+  else
+    model.step(dt);
+}
+
+// The at-rest test between history rows: every rest_duration / 10 of
+// simulated time, however long the output interval (0: never).
+inline double rest_probe_interval(const Scene& scene) {
+  return scene.time.rest_fraction > 0.0 ? scene.time.rest_duration / 10.0 : 0.0;
+}
+
+enum class Interrupt { None, AtRest, Stop };
+
+// Steps the model to t; stops early, at a step boundary, when a stop is
+// requested (run_control.hpp) or when at_rest() says so at a probe. Probes
+// fall on the first step past each multiple of probe_every, which depends
+// on the step alone, not on where the run was started or resumed.
+template <class Model, class AtRest>
+Interrupt advance_watching(Model& model, double t, double probe_every, AtRest at_rest) {
+  while (model.time() < t) {
+    const double before = model.time();
+    step_toward(model, t);
+    if (stop_requested()) return Interrupt::Stop;
+    if (probe_every > 0.0 &&
+        std::floor(model.time() / probe_every) > std::floor(before / probe_every) && at_rest())
+      return Interrupt::AtRest;
+  }
+  return Interrupt::None;
 }
 
 inline double history_interval(const Scene& scene) {
@@ -110,15 +168,18 @@ inline long checkpoint_rows(const Scene& scene, double every) {
 
 // The schedule every method follows: a history row every output interval /
 // kHistoryPerFrame, a frame every output interval, at the end and at rest.
-// record() appends a row and says whether the slide is at rest. A fresh run
-// (first_row 0) starts with frame 0 and row 0 at t = 0; a resumed one goes
-// on after the row of its checkpoint. checkpoint(k) follows every
-// checkpoint_rows-th row k but the last (a run that reaches it is done) and
-// one at rest.
-template <class Model, class Record, class WriteFrame, class Checkpoint>
+// record() appends a row and says whether the slide is at rest; at_rest()
+// tests it between rows (rest_probe_interval), and a slide found at rest
+// there gets its last row and frame at once. A fresh run (first_row 0)
+// starts with frame 0 and row 0 at t = 0; a resumed one goes on after the
+// row of its checkpoint, from the time of its checkpoint. checkpoint(k)
+// follows every checkpoint_rows-th row k but the last (a run that reaches
+// it is done) and one at rest; a stop request (a signal) ends the run at
+// the next step with checkpoint(k) of the last row written.
+template <class Model, class Record, class WriteFrame, class Checkpoint, class AtRest>
 void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_point start,
                   Model& model, long first_row, Record record, WriteFrame write_frame,
-                  long every, Checkpoint checkpoint, RunSummary& summary) {
+                  long every, Checkpoint checkpoint, AtRest at_rest, RunSummary& summary) {
   const long first_step = model.steps();
   if (first_row == 0) {
     write_frame();
@@ -127,9 +188,16 @@ void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_poi
   const double dt_history = history_interval(scene);
   const long rows = std::lround(std::ceil(scene.time.end / dt_history - 1e-9));
   try {
+    const double probe_every = rest_probe_interval(scene);
     for (long k = first_row + 1; k <= rows; ++k) {
-      model.advance_to(std::min(scene.time.end, k * dt_history));
-      summary.at_rest = record();
+      const Interrupt why = advance_watching(model, std::min(scene.time.end, k * dt_history),
+                                             probe_every, at_rest);
+      if (why == Interrupt::Stop) {
+        checkpoint(k - 1);
+        mark_stopped(stop_requested());
+        break;
+      }
+      summary.at_rest = record() || why == Interrupt::AtRest;
       if (k % kHistoryPerFrame == 0 || k == rows || summary.at_rest) write_frame();
       if (options.on_progress)
         options.on_progress({model.time(), scene.time.end, model.steps(), seconds_since(start)});
@@ -159,22 +227,33 @@ inline void rewind_folder(const fs::path& dir, const ScheduleState& state) {
     const bool numbered_file =
         (std::sscanf(name.c_str(), "frame_%d.", &frame) == 1 && (ext == ".vtu" || ext == ".vtp")) ||
         (std::sscanf(name.c_str(), "profile_%d.", &frame) == 1 && ext == ".csv");
-    const bool temporary = name[0] == '.' && name.find(".tmp.") != std::string::npos;
-    if ((numbered_file && frame >= state.frames) || temporary) fs::remove(entry.path());
+    if ((numbered_file && frame >= state.frames) || is_atomic_temporary(name))
+      fs::remove(entry.path());
   }
   keep_history_rows((dir / "history.csv").string(), state.row + 1);
 }
 
 // The scene and state of a run to resume from the checkpoint in
-// options.out_dir, with the folder rewound to it. Throws CheckpointError,
-// or SceneError for a stored scene this build does not read.
+// options.out_dir, with the folder locked for this process (run_mpm
+// releases it) and rewound to the checkpoint. Throws CheckpointError (a
+// checkpoint of another run among them), OutputFolderBusy, or SceneError
+// for a stored scene this build does not read.
 inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
   const fs::path dir(options.out_dir);
   const std::string path = (dir / kCheckpointFile).string();
-  Checkpoint cp = read_checkpoint(path);
-  scene = parse_scene(cp.state.scene_toml, path + " (its scene)");
-  rewind_folder(dir, cp.state.schedule);
-  return cp;
+  if (!fs::is_directory(dir)) throw CheckpointMissing("no output folder '" + dir.string() + "'");
+  lock_output_folder(dir.string());
+  try {
+    Checkpoint cp = read_checkpoint(path);
+    require_same_scene(cp.state, (dir / "scene.resolved.toml").string(), path);
+    scene = parse_scene(cp.state.scene_toml, path + " (its scene)");
+    require_particles_fit(cp.particles, scene, path);
+    rewind_folder(dir, cp.state.schedule);
+    return cp;
+  } catch (...) {
+    unlock_output_folder(dir.string());
+    throw;
+  }
 }
 
 // A whole MPM run with any driver of the MPM step (the CPU Simulation, the
@@ -187,6 +266,7 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
                    Driver& sim, HostParticles particles,
                    const ScheduleState* resumed = nullptr) {
   const fs::path dir = resumed ? fs::path(options.out_dir) : prepare_folder(scene, options);
+  const AdoptedFolderLock lock(dir.string());
   const BaseView base = sim.base().view();
   const double spacing = sim.particle_spacing();
   RunSummary summary;
@@ -220,6 +300,9 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
                                    sim.steps(), sim.last_dt(), sim.basal_shear_force()));
     return rest.at_rest(sim.time(), shape.kinetic_energy);
   };
+  const auto at_rest = [&] {
+    return rest.at_rest(sim.time(), measure_slide(particles(), base, spacing).kinetic_energy);
+  };
 
   const long every =
       resumed ? resumed->checkpoint_rows : checkpoint_rows(scene, options.checkpoint_every);
@@ -239,7 +322,7 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
     summary.checkpoint_time = summary.resumed_from = sim.time();
   }
   run_schedule(scene, options, start, sim, resumed ? resumed->row : 0, record, write_frame,
-               every, checkpoint, summary);
+               every, checkpoint, at_rest, summary);
   return summary;
 }
 

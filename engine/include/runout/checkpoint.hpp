@@ -3,6 +3,7 @@
 // particles in their memory order, the driver's counters, the run
 // schedule's place and the resolved scene), in a versioned binary file
 // with a checksum. Format in docs/output.md, "Checkpoints".
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "runout/particles.hpp"
+#include "runout/scene.hpp"
 #include "runout/simulation.hpp"
 
 namespace runout {
@@ -59,6 +61,22 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& source);
 // the new one is complete on disk.
 void write_checkpoint(const std::string& path, const CheckpointState& state,
                       const Particles& particles);
+// Reads the header first and refuses, before reading the rest, a file that
+// is not regular (a device, a pipe) or whose stated size is not its size.
 Checkpoint read_checkpoint(const std::string& path);
+
+// FNV-1a of a resolved scene's text: which run a checkpoint belongs to.
+std::uint64_t scene_hash(std::string_view scene_toml);
+
+// Throws CheckpointError unless the run folder's resolved scene (the file
+// at resolved_path, which a run writes first) is the checkpoint's own:
+// another run's checkpoint copied in would mix two runs in one folder.
+void require_same_scene(const CheckpointState& state, const std::string& resolved_path,
+                        const std::string& source);
+
+// Throws CheckpointError unless every particle's material and body index
+// is one of the scene's (the step indexes tables with them).
+void require_particles_fit(const Particles& particles, const Scene& scene,
+                           const std::string& source);
 
 }  // namespace runout
