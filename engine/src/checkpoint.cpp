@@ -12,9 +12,11 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <type_traits>
 
 #include "runout/atomic_file.hpp"
+#include "runout/memory_estimate.hpp"
 
 namespace runout {
 namespace {
@@ -225,6 +227,11 @@ std::string read_regular_file(const std::string& path,
   };
   read_into(0);
   check_header(bytes, size, path);
+  // A size the header and the file agree on can still be absurd (a sparse
+  // file): never try to hold more than the machine can.
+  if (const std::optional<double> available = available_memory(); available && size > *available)
+    throw CheckpointError(path + ": the checkpoint states " + byte_text(double(size)) +
+                          ", more than the memory available (" + byte_text(*available) + ")");
   bytes.resize(size);  // the header vouches for this size: it is the file's
   read_into(kHeaderBytes);
   return bytes;

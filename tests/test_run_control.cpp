@@ -1,0 +1,261 @@
+// The output folder under a second writer, signals and hostile checkpoints,
+// through the real CLI: a second run or a resume into a folder a live run
+// holds is refused (exit 75) and writes nothing; a dead run's lock is taken
+// over; SIGINT, SIGTERM and SIGHUP stop a run at a step with a checkpoint,
+// no temporary left and an index of whole frames, and the resume finishes
+// it byte for byte; a new run clears a killed run's temporaries; resume
+// refuses another run's checkpoint, a device or an absurd stated size before
+// reading it, and indices out of the scene's range; the at-rest stop comes
+// between output rows.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <climits>
+#include <cstdint>
+#include <functional>
+#include <cstdlib>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "run_folder.hpp"
+#include "runout/atomic_file.hpp"
+#include "runout/checkpoint.hpp"
+
+using namespace runout;
+using namespace runout::run_folder;
+using runout::cli_runner::run_cli;
+
+namespace {
+
+// The small scene, 128 particles, run for `end` seconds with a frame every
+// 0.5 s: about ten steps per history row, so that a signal usually lands
+// between rows.
+std::string long_scene(const std::string& end) {
+  std::string s = runout::cli_runner::kSmallScene;
+  s.replace(s.find("end = 0.2"), 9, "end = " + end);
+  s.replace(s.find("output_interval = 0.1"), 21, "output_interval = 0.5");
+  return s;
+}
+
+// Starts runout with args, stdout and stderr into log; the child's pid.
+pid_t start(const std::vector<std::string>& args, const fs::path& log) {
+  const char* cli = std::getenv("RUNOUT_CLI");
+  EXPECT_NE(cli, nullptr) << "RUNOUT_CLI is set by ctest";
+  std::vector<char*> argv{const_cast<char*>(cli)};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(out, 1);
+    ::dup2(out, 2);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// The exit code, 128 + n for a child signal n killed (as a shell gives it).
+int wait_for(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Waits until path exists (the run is under way); false after a minute.
+bool wait_for_file(const fs::path& path) {
+  for (int i = 0; i < 60000 && !fs::exists(path); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  return fs::exists(path);
+}
+
+std::vector<std::string> temporaries(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp.") != std::string::npos)
+      found.push_back(e.path().filename().string());
+  return found;
+}
+
+int frame_files(const fs::path& dir) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir)) n += e.path().extension() == ".vtu";
+  return n;
+}
+
+}  // namespace
+
+TEST(OutputLock, SecondWriterIsRefusedAndADeadHoldersLockTakenOver) {
+  ScratchFolder folder;
+  const std::string first = folder.write("first.toml", long_scene("60.0"));
+  const std::string other = folder.write("other.toml", long_scene("1.0"));
+  const fs::path out = folder.path() / "out";
+  const pid_t holder = start({"run", first, "-o", out.string(), "-q", "-t", "1",
+                              "--checkpoint-every", "0.5"},
+                             folder.path() / "first.log");
+  ASSERT_TRUE(wait_for_file(out / "checkpoint.bin"));
+  const std::string resolved = read_file(out / "scene.resolved.toml");
+
+  const cli_runner::Result second = run_cli("run " + other + " -q -o " + out.string());
+  EXPECT_EQ(second.code, 75) << second.output;
+  EXPECT_NE(second.output.find("is in use by another runout (pid " + std::to_string(holder)),
+            std::string::npos)
+      << second.output;
+  EXPECT_EQ(read_file(out / "scene.resolved.toml"), resolved) << "the refused run wrote";
+  const cli_runner::Result resume = run_cli("resume -q " + out.string());
+  EXPECT_EQ(resume.code, 75) << resume.output;
+
+  ::kill(holder, SIGKILL);  // no handler runs: the lock file stays behind
+  EXPECT_EQ(wait_for(holder), 128 + SIGKILL);
+  ASSERT_TRUE(fs::exists(out / kOutputLockFile));
+  const cli_runner::Result after = run_cli("run " + other + " -q -t 1 -o " + out.string());
+  EXPECT_EQ(after.code, 0) << after.output;
+  EXPECT_EQ(pvd_files(out / "small.pvd").size(), 3u);  // t = 0, 0.5, 1
+}
+
+TEST(Signals, StopAtAStepWithACheckpointAndResumeByteForByte) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("long.toml", long_scene("6.0"));
+  const fs::path reference = folder.path() / "reference";
+  ASSERT_EQ(run_cli("run " + scene + " -q -t 1 -o " + reference.string()).code, 0);
+
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    SCOPED_TRACE("signal " + std::to_string(signal));
+    const fs::path out = folder.path() / ("stopped" + std::to_string(signal));
+    const fs::path log = folder.path() / ("stopped" + std::to_string(signal) + ".log");
+    const pid_t pid = start({"run", scene, "-o", out.string(), "-t", "1"}, log);
+    ASSERT_TRUE(wait_for_file(out / "frame_00002.vtu"));
+    ::kill(pid, signal);
+    EXPECT_EQ(wait_for(pid), 128 + signal) << read_file(log);
+    EXPECT_NE(read_file(log).find("continue with: runout resume " + out.string()),
+              std::string::npos)
+        << read_file(log);
+    EXPECT_TRUE(temporaries(out).empty()) << temporaries(out).front();
+    ASSERT_TRUE(fs::exists(out / kCheckpointFile));
+    EXPECT_EQ(static_cast<int>(pvd_files(out / "small.pvd").size()), frame_files(out));
+    expect_frames_in_sequence(out, out / "small.pvd");
+
+    const cli_runner::Result resumed = run_cli("resume -q -t 1 " + out.string());
+    ASSERT_EQ(resumed.code, 0) << resumed.output;
+    expect_same_run(reference, out, "small.pvd");
+  }
+}
+
+TEST(Signals, ANewRunClearsAKilledRunsTemporaries) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
+  const fs::path out = folder.path() / "out";
+  fs::create_directories(out);
+  folder.write("out/.small.pvd.tmp.4242.0", "<VTKFile");
+  folder.write("out/.frame_00003.vtu.tmp.4242.7", "half a frame");
+  ASSERT_EQ(run_cli("run " + scene + " -q -o " + out.string()).code, 0);
+  EXPECT_TRUE(temporaries(out).empty()) << temporaries(out).front();
+}
+
+// A finished run with checkpoints, its folder the resume tests break.
+class HostileCheckpoint : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene_ = folder_.write("long.toml", long_scene("2.0"));
+    ASSERT_EQ(run_cli("run " + scene_ + " -q -t 1 --checkpoint-every 0.5 -o " + out().string())
+                  .code,
+              0);
+    ASSERT_TRUE(fs::exists(checkpoint()));
+  }
+  fs::path out() const { return folder_.path() / "out"; }
+  fs::path checkpoint() const { return out() / kCheckpointFile; }
+  void write_modified(const std::function<void(Checkpoint&)>& change) const {
+    Checkpoint cp = read_checkpoint(checkpoint().string());
+    change(cp);
+    write_checkpoint(checkpoint().string(), cp.state, cp.particles);
+  }
+  ScratchFolder folder_;
+  std::string scene_;
+};
+
+TEST_F(HostileCheckpoint, AnotherScenesCheckpointIsRefused) {
+  const std::string other = folder_.write("other.toml", long_scene("3.0"));
+  const fs::path elsewhere = folder_.path() / "elsewhere";
+  ASSERT_EQ(run_cli("run " + other + " -q -t 1 --checkpoint-every 0.5 -o " + elsewhere.string())
+                .code,
+            0);
+  fs::copy_file(elsewhere / kCheckpointFile, checkpoint(), fs::copy_options::overwrite_existing);
+  const std::string history = read_file(out() / "history.csv");
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("the checkpoint belongs to another run"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(out() / "history.csv"), history) << "the folder was rewound";
+}
+
+TEST_F(HostileCheckpoint, ADeviceIsRefusedBeforeReading) {
+  fs::remove(checkpoint());
+  fs::create_symlink("/dev/zero", checkpoint());
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
+}
+
+TEST_F(HostileCheckpoint, AnAbsurdStatedSizeIsRefusedBeforeReading) {
+  // A sparse terabyte behind a valid header that states its size: the
+  // header matches the file, so only a cap on what is read refuses it.
+  const std::string header = read_file(checkpoint()).substr(0, 20);
+  const std::uint64_t size = std::uint64_t(1) << 40;
+  std::string forged = header;
+  const std::uint64_t payload = size - 28;
+  forged.replace(12, 8, reinterpret_cast<const char*>(&payload), 8);
+  folder_.write("out/checkpoint.bin", forged);
+  fs::resize_file(checkpoint(), size);
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("more than the memory available"), std::string::npos) << r.output;
+}
+
+TEST_F(HostileCheckpoint, AMaterialOutsideTheSceneIsRefused) {
+  write_modified([](Checkpoint& cp) { cp.particles.material[7] = INT_MAX; });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("particle 7 has material_id 2147483647, the scene has 1 materials"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST_F(HostileCheckpoint, ABodyOutsideTheSceneIsRefused) {
+  write_modified([](Checkpoint& cp) { cp.particles.body[3] = -1; });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("particle 3 has body_id -1"), std::string::npos) << r.output;
+}
+
+TEST_F(HostileCheckpoint, AnIndexEntryOutOfTheFolderIsRefused) {
+  write_modified([](Checkpoint& cp) { cp.state.schedule.pvd[1].second = "../../escape.vtu"; });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("index entry 1 is not frame 1"), std::string::npos) << r.output;
+}
+
+TEST(AtRest, TheStopComesBetweenOutputRows) {
+  // A damped elastic block settling on flat ground, one frame interval of
+  // 1000 s: the rest test at rows alone would first look at t = 100 s.
+  std::string s = runout::cli_runner::kSmallScene;
+  s.replace(s.find("end = 0.2"), 9, "end = 1000.0\nrest_fraction = 0.01\nrest_duration = 0.5");
+  s.replace(s.find("output_interval = 0.1"), 21, "output_interval = 1000.0");
+  s.replace(s.find("slope_angle = 10.0"), 18, "slope_angle = 0.0");
+  s.replace(s.find("[boundary]"), 10, "[solver]\ndamping = 0.3\n[boundary]");
+  ScratchFolder folder;
+  const std::string scene = folder.write("rest.toml", s);
+  const cli_runner::Result r =
+      run_cli("run " + scene + " -q -t 1 -o " + (folder.path() / "out").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto at = r.output.find("came to rest at t = ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const double t = std::stod(r.output.substr(at + 20));
+  EXPECT_GT(t, 0.5);   // the test needs rest_duration below the threshold
+  EXPECT_LT(t, 10.0);  // found within a probe (0.05 s) of coming to rest, not at 100 s
+  EXPECT_EQ(pvd_files(folder.path() / "out" / "small.pvd").size(), 2u);  // t = 0 and at rest
+}
