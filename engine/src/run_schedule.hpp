@@ -241,7 +241,8 @@ inline void rewind_folder(const fs::path& dir, const ScheduleState& state) {
 inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
   const fs::path dir(options.out_dir);
   const std::string path = (dir / kCheckpointFile).string();
-  if (!fs::is_directory(dir)) throw CheckpointMissing("no output folder '" + dir.string() + "'");
+  if (!fs::is_directory(dir))
+    throw CheckpointMissing("cannot open checkpoint '" + path + "': no folder " + dir.string());
   lock_output_folder(dir.string());
   try {
     Checkpoint cp = read_checkpoint(path);
