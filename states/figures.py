@@ -5,9 +5,11 @@ folder into OUT_DIR/figures/ (docs/figures.md):
                          time, one colour range for all, the base drawn;
   morphology.png         the slide's upper surface (Runout Morphology,
                          Profile port) at the chosen times in one chart;
-  strain_bands.png       plastic shear strain with the shear band skeletons
-                         (Runout Shear Bands) and the block outlines (Runout
-                         Horsts And Grabens) over it, at the last chosen time;
+  strain_bands_tNNN.NN.png  plastic shear strain with the shear band
+                         skeletons (Runout Shear Bands, each band's dip
+                         marked) and the block outlines (Runout Horsts And
+                         Grabens) over it, at each chosen time;
+  strain_bands.png       the same at the last chosen time;
   history.png            runout and toe velocity against time from
                          history.csv, one curve per run (--compare);
   animation/velocity_NNNNN.png   with --animation: every frame's velocity;
@@ -28,7 +30,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paraview import simple  # noqa: E402
+from paraview import servermanager, simple  # noqa: E402
 
 import runout_pv  # noqa: E402
 
@@ -263,26 +265,55 @@ class Figures:
         chart.LeftAxisRangeMaximum = y_low + height / width * x_range / factor
         return factor
 
-    # 3. Plastic shear strain, shear bands, horsts and grabens.
+    # 3. Plastic shear strain, shear bands, horsts and grabens, at each
+    # chosen time (their evolution), the last also as strain_bands.png.
     def strain_bands(self):
-        t = self.times[-1]
-        runout_pv.set_time(t)
-        bounds = self.reader.GetDataInformation().GetBounds()
-        self.factor = exaggeration_for(bounds, self.size)
-        layout = simple.CreateLayout("strain bands")
-        view = runout_pv.render_view()
-        simple.AssignViewToLayout(view=view, layout=layout, hint=0)
-        lut = build_strain_bands(self.reader, view, [1.0, float(self.factor), 1.0])[-1]
-        text = simple.Text(registrationName="time label", Text=self.label(t))
-        label = simple.Show(text, view)
-        label.WindowLocation = "Upper Left Corner"
-        label.Color = runout_pv.INK
-        layout.SetSize(*self.size)
-        simple.Render(view)
-        runout_pv.fit_camera(view, bounds, exaggeration=[1.0, self.factor, 1.0])
-        self.save(layout, "strain_bands.png", map_ends(lut) + [rgb255(BAND_RED)],
-                  f"plastic shear strain, shear bands and blocks at t = {t:g} s")
-        self.clear()
+        for t in self.times:
+            runout_pv.set_time(t)
+            bounds = self.reader.GetDataInformation().GetBounds()
+            self.factor = exaggeration_for(bounds, self.size)
+            layout = simple.CreateLayout("strain bands")
+            view = runout_pv.render_view()
+            simple.AssignViewToLayout(view=view, layout=layout, hint=0)
+            bands, _, _, lut = build_strain_bands(self.reader, view,
+                                                  [1.0, float(self.factor), 1.0])
+            text = simple.Text(registrationName="time label", Text=self.label(t))
+            label = simple.Show(text, view)
+            label.WindowLocation = "Upper Left Corner"
+            label.Color = runout_pv.INK
+            layout.SetSize(*self.size)
+            simple.Render(view)
+            runout_pv.fit_camera(view, bounds, exaggeration=[1.0, self.factor, 1.0])
+            # The bands' red only where the frame has bands (not before the
+            # slide fails).
+            colours = map_ends(lut) + ([rgb255(BAND_RED)] if self.mark_dips(bands, view, t)
+                                       else [])
+            what = f"plastic shear strain, shear bands (dips marked) and blocks at t = {t:g} s"
+            self.save(layout, f"strain_bands_t{t:07.2f}.png", colours, what)
+            if t == self.times[-1]:
+                self.save(layout, "strain_bands.png", colours, what)
+            self.clear()
+
+    def mark_dips(self, bands, view, t):
+        """Each band's dip (degrees, docs/filters.md: the true dip, not the
+        exaggerated picture's) in red beside its centroid, in 3D text about
+        14 pixels high. Returns the number of bands."""
+        bands.UpdatePipeline(t)
+        table = servermanager.Fetch(bands, idx=1)
+        names = [table.GetColumnName(c) for c in range(table.GetNumberOfColumns())]
+        if "dip" not in names:
+            return 0
+        column = {name: table.GetColumnByName(name) for name in ("centroid_x", "centroid_y", "dip")}
+        height = 14.0 / self.size[1] * 2 * view.CameraParallelScale
+        for row in range(table.GetNumberOfRows()):
+            x, y, dip = (column[n].GetValue(row) for n in ("centroid_x", "centroid_y", "dip"))
+            mark = simple.a3DText(registrationName=f"dip {row}", Text=f"{dip:.0f} deg")
+            display = simple.Show(mark, view)
+            display.Scale = [height, height, 1.0]
+            display.Position = [x + 0.5 * height, self.factor * y + 0.5 * height, 3.0]
+            display.AmbientColor = display.DiffuseColor = BAND_RED
+            display.Ambient, display.Diffuse = 1.0, 0.0
+        return table.GetNumberOfRows()
 
     # 4. Runout and toe velocity against time.
     def history(self):
