@@ -3,6 +3,8 @@ folder into OUT_DIR/figures/ (docs/figures.md):
 
   velocity_tNNN.NN.png   velocity magnitude on the particles at each chosen
                          time, one colour range for all, the base drawn;
+  velocity_contours_tNNN.NN.png  speed contours at one time (--contour-time,
+                         default the last chosen), framed on the slide then;
   morphology.png         the slide's upper surface (Runout Morphology,
                          Profile port) at the chosen times in one chart;
   strain_bands_tNNN.NN.png  plastic shear strain with the shear band
@@ -18,7 +20,7 @@ folder into OUT_DIR/figures/ (docs/figures.md):
 
 Usage (rendering needs an X server; Debian's ParaView has no offscreen one):
   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvbatch states/figures.py \\
-    OUT_DIR [--plugin RunoutPlugin.so] [--times t1,t2,...] [--size WxH] \\
+    OUT_DIR [--plugin RunoutPlugin.so] [--times t1,t2,...] [--contour-time T] [--size WxH] \\
     [--animation] [--compare DIR2 [DIR3 ...]] [--labels L1,L2,...]
 scripts/figures finds pvbatch and the plugin and does this for you.
 """
@@ -50,6 +52,8 @@ def arguments():
                         "already loaded through PV_PLUGIN_PATH)")
     parser.add_argument("--times", help="comma-separated times (s); default: 4 spread "
                         "over the run")
+    parser.add_argument("--contour-time", type=float,
+                        help="time (s) of the velocity contours; default: the last chosen")
     parser.add_argument("--size", default="1200x600", help="WxH of every PNG")
     parser.add_argument("--animation", action="store_true",
                         help="also every frame's velocity into figures/animation/")
@@ -203,6 +207,52 @@ class Figures:
             text.Text = self.label(t)
             self.save(layout, os.path.join("animation", f"velocity_{i:05d}.png"), ends,
                       f"animation frame {i}, t = {t:g} s")
+        self.clear()
+
+    # 1b. Velocity contours at one time, framed on the slide then.
+    def velocity_contours(self):
+        t = (self.times[-1] if self.options.contour_time is None
+             else builtins.min(self.steps, key=lambda s: abs(s - self.options.contour_time)))
+        runout_pv.set_time(t)
+        self.reader.UpdatePipeline(t)
+        bounds = self.reader.GetDataInformation().GetBounds()
+        self.factor = exaggeration_for(bounds, self.size)
+        scale = [1.0, float(self.factor), 1.0]
+        layout = simple.CreateLayout("velocity contours")
+        view = runout_pv.render_view()
+        simple.AssignViewToLayout(view=view, layout=layout, hint=0)
+        spacing = self.reader.FieldData["particle_spacing"].GetRange()[0]
+        # A triangulation of the particles (no triangle longer than a few
+        # spacings, so no skin over gaps) carries the speed between them.
+        mesh = simple.Delaunay2D(registrationName="particles triangulated", Input=self.reader)
+        mesh.Alpha = 2.5 * spacing
+        speed = simple.Calculator(registrationName="speed", Input=mesh)
+        speed.ResultArrayName = "speed"
+        speed.Function = "mag(velocity)"
+        top = largest_speed(self.options.out_dir) or 1.0
+        step = builtins.max([v for v in (0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0) if top / v >= 6]
+                            or [0.1])
+        levels = [step * k for k in range(1, int(top / step) + 1)]
+        lines = simple.Contour(registrationName="speed contours", Input=speed)
+        lines.ContourBy = ["POINTS", "speed"]
+        lines.Isosurfaces = levels
+        base = runout_pv.base_line(self.reader)
+        runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0, scale=scale)
+        runout_pv.show(self.reader, view, z=-0.5, scale=scale, Representation="Points",
+                       PointSize=3.0, ColorArrayName=["POINTS", ""],
+                       AmbientColor=[0.8, 0.8, 0.8], DiffuseColor=[0.8, 0.8, 0.8])
+        curves = runout_pv.show(lines, view, z=1.0, scale=scale, LineWidth=2.5)
+        lut = runout_pv.colour_by(curves, view, "speed", "speed (m/s), contours every "
+                                  f"{step:g} m/s", preset="Turbo", data_range=[0.0, top])
+        text = simple.Text(registrationName="time label", Text=self.label(t))
+        label = simple.Show(text, view)
+        label.WindowLocation = "Upper Left Corner"
+        label.Color = runout_pv.INK
+        layout.SetSize(*self.size)
+        simple.Render(view)
+        runout_pv.fit_camera(view, bounds, exaggeration=scale)
+        self.save(layout, f"velocity_contours_t{t:07.2f}.png", map_ends(lut),
+                  f"speed contours every {step:g} m/s at t = {t:g} s")
         self.clear()
 
     # 2. Morphology evolution.
@@ -385,6 +435,7 @@ def main():
     figures.velocity()
     figures.morphology()
     figures.strain_bands()
+    figures.velocity_contours()
     figures.history()
     if options.animation:
         figures.animation()

@@ -96,6 +96,11 @@ def main():
             animation = [n for n in names if n.startswith("animation/")]
             if len(velocity) != 4:
                 failures.append(f"{len(velocity)} velocity pictures, 4 by default")
+            contours = [n for n in names if n.startswith("velocity_contours_t")]
+            bands = [n for n in names if n.startswith("strain_bands_t")]
+            if len(contours) != 1 or len(bands) != 4:
+                failures.append(f"{len(contours)} velocity contour pictures (1 by default), "
+                                f"{len(bands)} strain and band pictures (4)")
             if len(animation) != 7:  # frames at 0, 1, ..., 6 s
                 failures.append(f"{len(animation)} animation frames, 7 frames in the run")
             on_disk = sorted(os.path.relpath(p, folder)
