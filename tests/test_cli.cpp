@@ -127,3 +127,33 @@ TEST_F(Cli, BackendIsCheckedBeforeAnyOutput) {
     EXPECT_TRUE(fs::exists(out / "small.pvd"));
   }
 }
+
+// A step count far beyond any int: check prints it (a lround of it printed
+// -9223372036854775808), and only a raised limit lets check get that far.
+TEST_F(Cli, CheckPrintsAStepCountBeyondAnyInteger) {
+  std::string scene = kSmallScene;
+  scene.replace(scene.find("youngs_modulus = 1.0e5"), 22, "youngs_modulus = 1.0e300");
+  const std::string path = write("stiff.toml", scene);
+  const Result refused = run_cli("check " + path);
+  EXPECT_EQ(refused.code, 65) << refused.output;
+  EXPECT_NE(refused.output.find("raise the limit with --max-steps"), std::string::npos)
+      << refused.output;
+  const Result r = run_cli("check " + path + " --max-steps 1e300");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("# steps (about):    6.32e+148 "), std::string::npos) << r.output;
+}
+
+// The limits are options: a run within a raised limit goes ahead.
+TEST_F(Cli, ARunBeyondALimitGoesAheadWhenTheLimitIsRaised) {
+  const std::string path = write("small.toml", kSmallScene);
+  const Result refused = run_cli("run -q " + path + " --max-steps 5 -o " + (dir_ / "a").string());
+  EXPECT_EQ(refused.code, 65) << refused.output;
+  EXPECT_NE(refused.output.find("more than the limit of 5;"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir_ / "a"));
+  const Result tight = run_cli("run -q " + path + " --max-output 1e-6 -o " + (dir_ / "b").string());
+  EXPECT_EQ(tight.code, 65) << tight.output;
+  EXPECT_NE(tight.output.find("time.output_interval: the run writes about 3 frames"),
+            std::string::npos)
+      << tight.output;
+  EXPECT_EQ(run_cli("run -q " + path + " --max-steps 1e4 -o " + (dir_ / "c").string()).code, 0);
+}

@@ -113,7 +113,42 @@ std::string step_count_text(double steps) {
   return buf;
 }
 
-int check(const Scene& s) {
+// --max-steps and --max-output (GiB) of run and check.
+struct LimitArgs {
+  double max_steps = CostLimits{}.max_steps;
+  double max_output_gib = CostLimits{}.max_output_bytes / double(1 << 30);
+};
+
+void add_limit_args(CLI::App* cmd, LimitArgs& a) {
+  cmd->add_option("--max-steps", a.max_steps,
+                  "Refuse a run that needs more steps than this (estimated from the initial "
+                  "Courant step)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-output", a.max_output_gib,
+                  "Refuse a run whose frames, uncompressed, would exceed this many GiB")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+}
+
+// The limits; a run is bounded by the free disk of its output folder too.
+CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
+  CostLimits limits;
+  limits.max_steps = a.max_steps;
+  limits.max_output_bytes = a.max_output_gib * double(1 << 30);
+  if (!out_dir) return limits;
+  const std::optional<double> free = free_disk_bytes(*out_dir);
+  if (free && *free < limits.max_output_bytes) {
+    limits.max_output_bytes = *free;
+    limits.output_limit_is = "the space free on the disk of " + *out_dir;
+  }
+  return limits;
+}
+
+int check(const Scene& s, const LimitArgs& limit_args) {
+  require_memory(s, s.method);  // the more basic refusal comes first
+  require_cost(s, s.method, limits_for(limit_args, nullptr));
+  const RunCost cost = estimate_cost(s, s.method);
   Simulation sim(s);
   const double dt = sim.stable_dt();
   const int n = sim.particles().size();
@@ -126,6 +161,8 @@ int check(const Scene& s) {
             << "\n# initial dt:       " << dt << " s (Courant " << s.time.courant << ")"
             << "\n# steps (about):    " << step_count_text(s.time.end / dt)
             << " (dt falls as the slide speeds up)"
+            << "\n# frames:           " << step_count_text(cost.frames) << ", about "
+            << byte_text(cost.output_bytes) << " uncompressed"
             << "\n# memory (about):   " << byte_text(memory.bytes()) << " ("
             << byte_text(memory.item_bytes) << " per "
             << (s.method == Method::Dam ? "element" : "particle") << ", "
@@ -224,7 +261,7 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
 }
 
 int run(const Scene& s, const std::string& out, const std::string& backend, bool quiet,
-        double checkpoint_every) {
+        double checkpoint_every, const LimitArgs& limit_args) {
   if (checkpoint_every > 0 && s.method == Method::Dam) {
     std::cerr << "runout: --checkpoint-every: the depth-averaged model (method = dam) writes "
                  "no checkpoints\n";
@@ -239,6 +276,8 @@ int run(const Scene& s, const std::string& out, const std::string& backend, bool
   RunOptions opt;
   opt.out_dir = out.empty() ? "out/" + s.name : out;
   opt.checkpoint_every = checkpoint_every;
+  require_memory(s, s.method);  // the more basic refusal comes first
+  require_cost(s, s.method, limits_for(limit_args, &opt.out_dir));
   return execute([&](const RunOptions& o) { return runner(s, o); }, opt, quiet,
                  s.method == Method::Dam);
 }
@@ -272,11 +311,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   SceneArgs run_args, check_args;
+  LimitArgs run_limits, check_limits;
   std::string out;
   int threads = 0;
   bool quiet = false;
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its frames and history");
   add_scene_args(run_cmd, run_args);
+  add_limit_args(run_cmd, run_limits);
   run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)");
   run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::PositiveNumber);
@@ -301,6 +342,7 @@ int main(int argc, char** argv) {
   CLI::App* check_cmd =
       app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
   add_scene_args(check_cmd, check_args);
+  add_limit_args(check_cmd, check_limits);
   std::optional<double> budget;
   check_cmd->add_option("--budget", budget,
                         "Estimate the finest cell size per method that runs within SECONDS "
@@ -322,10 +364,10 @@ int main(int argc, char** argv) {
   if (threads > 0) omp_set_num_threads(threads);
   if (*run_cmd || *resume_cmd) stop_on_signals();
   try {
-    if (*run_cmd) return run(load(run_args), out, backend, quiet, checkpoint_every);
+    if (*run_cmd) return run(load(run_args), out, backend, quiet, checkpoint_every, run_limits);
     if (*resume_cmd) return resume(resume_dir, backend, quiet);
     if (*check_cmd && budget) return budget_check(load(check_args), *budget);
-    if (*check_cmd) return check(load(check_args));
+    if (*check_cmd) return check(load(check_args), check_limits);
     if (*study_cmd) return run_study(study_args);
     return info();
   } catch (const SceneFileError& e) {

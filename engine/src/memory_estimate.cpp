@@ -6,8 +6,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <filesystem>
 #include <sstream>
 
+#include <sys/statvfs.h>
+
+#include "runout/materials.hpp"
 #include "runout/polygon.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/stages.hpp"
@@ -184,6 +188,73 @@ std::string byte_text(double bytes) {
     ++u;
   }
   return number_text(bytes) + " " + units[u];
+}
+
+}  // namespace runout
+
+namespace runout {
+namespace {
+
+// A frame's bytes per particle as written uncompressed (kParticleFrame
+// raw, base64), and a profile row per cell of the domain's width.
+constexpr double kFrameFileBytesPerParticle = kParticleFrame * 4.0 / 3.0;
+constexpr double kProfileRowBytes = 6 * 24;
+
+}  // namespace
+
+RunCost estimate_cost(const Scene& scene, Method method) {
+  RunCost c;
+  double c_max = 0;
+  for (const MaterialSpec& m : scene.materials) {
+    const MaterialParams p = material_params(m);
+    const double speed = std::sqrt(p_wave_modulus(p) / p.density);
+    if (speed > c_max) {
+      c_max = speed;
+      c.stiffest = m.name;
+    }
+  }
+  c.initial_dt = c_max > 0 ? scene.time.courant * scene.grid.cell_size / c_max : 0;
+  c.steps = c.initial_dt > 0 ? scene.time.end / c.initial_dt : 0;
+  c.frames = std::floor(scene.time.end / scene.time.output_interval) + 1;
+  const double items = estimate_memory(scene, method).items;
+  const double bins = (scene.grid.max.x() - scene.grid.min.x()) / scene.grid.cell_size;
+  c.output_bytes = c.frames * (items * kFrameFileBytesPerParticle + bins * kProfileRowBytes);
+  return c;
+}
+
+void require_cost(const Scene& scene, Method method, const CostLimits& limits) {
+  const RunCost c = estimate_cost(scene, method);
+  // The depth-averaged model steps with its own, much longer, time step.
+  if (method != Method::Dam && c.steps > limits.max_steps)
+    throw SceneError("time.end: the run needs at least " + number_text(c.steps) +
+                         " steps (time.end = " + number_text(scene.time.end) +
+                         " s over the initial time step of " + number_text(c.initial_dt) +
+                         " s, from time.courant, grid.cell_size and the P-wave speed of "
+                         "material \"" + c.stiffest + "\"), more than the limit of " +
+                         number_text(limits.max_steps) + "; shorten time.end, raise "
+                         "grid.cell_size, or raise the limit with " + limits.steps_option,
+                     0);
+  if (c.output_bytes > limits.max_output_bytes)
+    throw SceneError("time.output_interval: the run writes about " + number_text(c.frames) +
+                         " frames of " + number_text(estimate_memory(scene, method).items) +
+                         (method == Method::Dam ? " elements" : " particles") + ", about " +
+                         byte_text(c.output_bytes) + " uncompressed, more than " +
+                         limits.output_limit_is + " of " + byte_text(limits.max_output_bytes) +
+                         "; raise time.output_interval or shorten time.end, or raise the "
+                         "limit with " + limits.output_option,
+                     0);
+}
+
+std::optional<double> free_disk_bytes(const std::string& path) {
+  std::error_code ignored;
+  std::filesystem::path at = std::filesystem::absolute(path, ignored);
+  while (!at.empty() && !std::filesystem::exists(at, ignored) && at != at.parent_path())
+    at = at.parent_path();
+  struct statvfs fs {};
+  // No blocks at all: a pseudo file system (/proc), whose writes fail on
+  // their own with a clearer reason than a size.
+  if (::statvfs(at.c_str(), &fs) != 0 || fs.f_blocks == 0) return std::nullopt;
+  return double(fs.f_bavail) * double(fs.f_frsize);
 }
 
 }  // namespace runout

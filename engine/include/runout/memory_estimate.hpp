@@ -43,3 +43,37 @@ void require_memory(const Scene& scene, Method method);
 std::string byte_text(double bytes);
 
 }  // namespace runout
+
+namespace runout {
+
+// What a run of a scene costs before it starts, from the scene alone: an
+// input can pass every check of its keys and still never finish, or fill
+// the disk.
+struct RunCost {
+  double initial_dt = 0;    // the Courant step of the stiffest material at rest [s]
+  double steps = 0;         // time.end / initial_dt: a lower bound, dt falls as the slide moves
+  double frames = 0;        // time.end / time.output_interval + 1
+  double output_bytes = 0;  // the frames uncompressed, with their profiles
+  std::string stiffest;     // the material whose P-wave sets initial_dt
+};
+RunCost estimate_cost(const Scene& scene, Method method);
+
+struct CostLimits {
+  double max_steps = 1e8;                    // at a few M particle-steps/s, days of work
+  double max_output_bytes = 16.0 * (1 << 30);  // a frame series a workstation keeps
+  std::string steps_option = "--max-steps";  // how to raise each limit
+  std::string output_option = "--max-output";
+  std::string output_limit_is = "the limit";  // "the limit", or what else bounds it (a disk)
+};
+
+// Throws SceneError (line 0: the check comes after the overrides) when the
+// MPM run needs more steps than limits.max_steps (naming time.end, the
+// step and what sets it) or writes more than limits.max_output_bytes
+// (naming time.output_interval, the frames and their size).
+void require_cost(const Scene& scene, Method method, const CostLimits& limits);
+
+// The bytes free to an unprivileged writer on the file system that holds
+// path (its nearest existing folder); nullopt where statvfs fails.
+std::optional<double> free_disk_bytes(const std::string& path);
+
+}  // namespace runout
