@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """The ablation of docs/convergence.md: each numerical candidate alone, on
 coarse case 2 and on the column collapse, at several Courant numbers.
 
