@@ -504,6 +504,12 @@ Polygon read_vertices(const TableReader& r) {
   if (polygon.size() < 3)
     vertices.fail("expected at least 3 vertices (got " +
                   std::to_string(polygon.size()) + ")");
+  // The outline check is near-linear for short edges, but stays bounded
+  // for any outline only with a bounded count.
+  constexpr std::size_t kMaxVertices = 1000000;
+  if (polygon.size() > kMaxVertices)
+    vertices.fail("more than " + std::to_string(kMaxVertices) + " vertices (got " +
+                  std::to_string(polygon.size()) + ")");
   return polygon;
 }
 
