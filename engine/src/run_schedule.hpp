@@ -36,7 +36,8 @@ inline void clear_previous_output(const fs::path& dir) {
     const std::string name = entry.path().filename().string();
     const std::string ext = entry.path().extension().string();
     const bool profile = name.rfind("profile_", 0) == 0 && ext == ".csv";
-    if (ext == ".vtu" || ext == ".vtp" || ext == ".pvd" || profile || name == "history.csv" ||
+    if (ext == ".vtu" || ext == ".vtp" || ext == ".pvd" || ext == ".manifest" || profile ||
+        name == "history.csv" ||
         name == "scene.resolved.toml" || name == kCheckpointFile || is_atomic_temporary(name))
       fs::remove(entry.path());
   }

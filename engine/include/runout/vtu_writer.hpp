@@ -31,7 +31,9 @@ void write_particles_vtu(const std::string& path, const Particles& particles,
                          const FrameInfo& info, bool compress);
 
 // The .pvd index of a frame series. add() appends a frame and rewrites the
-// index atomically, so the index on disk always lists whole frames only.
+// index atomically, so the index on disk always lists whole frames only;
+// beside it, <index>.manifest gives each listed frame's size and CRC-32
+// (docs/output.md), written before the index that lists the frame.
 class PvdIndex {
  public:
   using Entries = std::vector<std::pair<double, std::string>>;  // time, file
@@ -45,6 +47,15 @@ class PvdIndex {
   void write() const;
   std::string path_;
   Entries frames_;
+  std::vector<std::string> manifest_;  // one line per frame, as frames_
 };
+
+inline std::string manifest_path(const std::string& pvd_path) { return pvd_path + ".manifest"; }
+
+// The frames of the .pvd at pvd_path that do not match its manifest, each
+// "file: why" (missing, not listed in the manifest, size, checksum); empty
+// when every listed frame is whole. Throws std::runtime_error when the
+// index or its manifest cannot be read.
+std::vector<std::string> verify_frames(const std::string& pvd_path);
 
 }  // namespace runout
