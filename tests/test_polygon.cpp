@@ -83,3 +83,26 @@ TEST(Polygon, AHundredThousandVerticesInWellUnderASecond) {
   std::printf("1e5 vertices: %.3f s simple, %.3f s both\n", simple, total);
   EXPECT_LT(total, 1.0);  // a complexity bound: testing every pair took 136 s
 }
+
+TEST(Polygon, LongParallelEdgesInACellCostASortNotEveryPair) {
+  // A comb of 2e4 teeth, every tooth's edges across the whole height: the
+  // grid's cells then hold many edges each.
+  Polygon p;
+  const int teeth = 20000;
+  for (int k = 0; k < teeth; ++k) {
+    p.emplace_back(2.0 * k, 0.0);
+    p.emplace_back(2.0 * k, 100.0);
+    p.emplace_back(2.0 * k + 1, 100.0);
+    p.emplace_back(2.0 * k + 1, 1.0);
+  }
+  p.emplace_back(2.0 * teeth, 1.0);
+  p.emplace_back(2.0 * teeth, -1.0);
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(outline_defect(p), "");
+  p[4 * 500 + 1].x() = 2.0 * 500 + 2.5;  // tooth 500's left edge now leans across tooth 501
+  EXPECT_NE(outline_defect(p).find("self-intersecting polygon: edge 2000 "), std::string::npos)
+      << outline_defect(p);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("comb of %zu vertices, twice: %.3f s\n", p.size(), wall);
+  EXPECT_LT(wall, 1.0);  // a complexity bound: the cells' pairs took 13 s
+}

@@ -60,6 +60,12 @@ class EdgeGrid {
  public:
   explicit EdgeGrid(const Polygon& polygon) : polygon_(polygon) {
     const std::size_t n = polygon.size();
+    boxes_.reserve(n);
+    for (std::size_t e = 0; e < n; ++e) {
+      const Eigen::Vector2d& a = polygon[e];
+      const Eigen::Vector2d& b = polygon[(e + 1) % n];
+      boxes_.push_back({a.cwiseMin(b), a.cwiseMax(b)});
+    }
     lo_ = hi_ = polygon[0];
     for (const auto& p : polygon) {
       lo_ = lo_.cwiseMin(p);
@@ -81,19 +87,27 @@ class EdgeGrid {
     for_each_cell_of_edges([&](long cell, std::size_t e) {
       edges_[fill[cell]++] = static_cast<std::uint32_t>(e);
     });
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c)
+      std::sort(edges_.begin() + start_[c], edges_.begin() + start_[c + 1],
+                [&](std::uint32_t a, std::uint32_t b) { return box(a).min.x() < box(b).min.x(); });
   }
 
   // The first pair (i < j, in the order of i then j) of edges that share no
-  // vertex and meet; (n, n) when there is none.
+  // vertex and meet; (n, n) when there is none. Within a cell the edges
+  // are sorted by their left end, so that only pairs whose boxes overlap
+  // are tested: many long parallel edges in one cell (a comb's teeth) cost
+  // a sort, not every pair.
   std::pair<std::size_t, std::size_t> first_meeting() const {
     const std::size_t n = polygon_.size();
     std::pair<std::size_t, std::size_t> first{n, n};
     for (std::size_t c = 0; c + 1 < start_.size(); ++c)
       for (std::size_t a = start_[c]; a < start_[c + 1]; ++a)
-        for (std::size_t b = a + 1; b < start_[c + 1]; ++b) {
+        for (std::size_t b = a + 1; b < start_[c + 1] && box(edges_[b]).min.x() <= box(edges_[a]).max.x();
+             ++b) {
           const std::size_t i = std::min(edges_[a], edges_[b]);
           const std::size_t j = std::max(edges_[a], edges_[b]);
           if (j == i + 1 || (i == 0 && j == n - 1) || std::make_pair(i, j) >= first) continue;
+          if (box(i).min.y() > box(j).max.y() || box(j).min.y() > box(i).max.y()) continue;
           if (segments_meet(polygon_[i], polygon_[(i + 1) % n], polygon_[j], polygon_[(j + 1) % n]))
             first = {i, j};
         }
@@ -105,16 +119,19 @@ class EdgeGrid {
     if (hi <= lo) return 0;
     return std::clamp(static_cast<long>((v - lo) / (hi - lo) * side_), 0L, side_ - 1);
   }
+  struct Box {
+    Eigen::Vector2d min, max;
+  };
+  const Box& box(std::size_t edge) const { return boxes_[edge]; }
+
   template <class Visit>
   void for_each_cell_of_edges(Visit visit) const {
-    const std::size_t n = polygon_.size();
-    for (std::size_t e = 0; e < n; ++e) {
-      const Eigen::Vector2d& a = polygon_[e];
-      const Eigen::Vector2d& b = polygon_[(e + 1) % n];
-      const long x0 = cell_of(std::min(a.x(), b.x()), lo_.x(), hi_.x());
-      const long x1 = cell_of(std::max(a.x(), b.x()), lo_.x(), hi_.x());
-      const long y0 = cell_of(std::min(a.y(), b.y()), lo_.y(), hi_.y());
-      const long y1 = cell_of(std::max(a.y(), b.y()), lo_.y(), hi_.y());
+    for (std::size_t e = 0; e < boxes_.size(); ++e) {
+      const Box& b = boxes_[e];
+      const long x0 = cell_of(b.min.x(), lo_.x(), hi_.x());
+      const long x1 = cell_of(b.max.x(), lo_.x(), hi_.x());
+      const long y0 = cell_of(b.min.y(), lo_.y(), hi_.y());
+      const long y1 = cell_of(b.max.y(), lo_.y(), hi_.y());
       for (long y = y0; y <= y1; ++y)
         for (long x = x0; x <= x1; ++x) visit(y * side_ + x, e);
     }
@@ -125,6 +142,7 @@ class EdgeGrid {
   Eigen::Vector2d lo_, hi_;
   long side_ = 1;
   std::vector<std::size_t> start_;
+  std::vector<Box> boxes_;            // of each edge
   std::vector<std::uint32_t> edges_;  // the scene parser caps vertices far below 2^32
 };
 
