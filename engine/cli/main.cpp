@@ -14,7 +14,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <iostream>
 #include <optional>
 
@@ -94,6 +96,13 @@ void add_scene_args(CLI::App* cmd, SceneArgs& a) {
                   "Override the depth-averaged element count (0: length / cell size)");
 }
 
+// The scene's text, for the line of a key in a refusal after the parse.
+SceneSource source_of(const SceneArgs& a) {
+  if (a.path.empty()) return {"default.toml", std::string(default_scene_toml())};
+  std::ifstream in(a.path, std::ios::binary);
+  return {a.path, std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>())};
+}
+
 Scene load(const SceneArgs& a) {
   Scene s = a.path.empty() ? parse_scene(default_scene_toml(), "default.toml")
                            : load_scene_file(a.path);
@@ -146,9 +155,9 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
   return limits;
 }
 
-int check(const Scene& s, const LimitArgs& limit_args) {
+int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args) {
   require_memory(s, s.method);  // the more basic refusal comes first
-  require_cost(s, s.method, limits_for(limit_args, nullptr));
+  require_cost(s, s.method, limits_for(limit_args, nullptr), source);
   const RunCost cost = estimate_cost(s, s.method);
   Simulation sim(s);
   const double dt = sim.stable_dt();
@@ -261,8 +270,9 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
   return kOk;
 }
 
-int run(const Scene& s, const std::string& out, const std::string& backend, bool quiet,
-        double checkpoint_every, const LimitArgs& limit_args) {
+int run(const Scene& s, const SceneSource& source, const std::string& out,
+        const std::string& backend, bool quiet, double checkpoint_every,
+        const LimitArgs& limit_args) {
   if (checkpoint_every > 0 && s.method == Method::Dam) {
     std::cerr << "runout: --checkpoint-every: the depth-averaged model (method = dam) writes "
                  "no checkpoints\n";
@@ -278,7 +288,7 @@ int run(const Scene& s, const std::string& out, const std::string& backend, bool
   opt.out_dir = out.empty() ? "out/" + s.name : out;
   opt.checkpoint_every = checkpoint_every;
   require_memory(s, s.method);  // the more basic refusal comes first
-  require_cost(s, s.method, limits_for(limit_args, &opt.out_dir));
+  require_cost(s, s.method, limits_for(limit_args, &opt.out_dir), source);
   return execute([&](const RunOptions& o) { return runner(s, o); }, opt, quiet,
                  s.method == Method::Dam);
 }
@@ -397,10 +407,12 @@ int main(int argc, char** argv) {
   if (threads > 0) omp_set_num_threads(threads);
   if (*run_cmd || *resume_cmd) stop_on_signals();
   try {
-    if (*run_cmd) return run(load(run_args), out, backend, quiet, checkpoint_every, run_limits);
+    if (*run_cmd)
+      return run(load(run_args), source_of(run_args), out, backend, quiet, checkpoint_every,
+                 run_limits);
     if (*resume_cmd) return resume(resume_dir, backend, quiet);
     if (*check_cmd && budget) return budget_check(load(check_args), *budget);
-    if (*check_cmd) return check(load(check_args), check_limits);
+    if (*check_cmd) return check(load(check_args), source_of(check_args), check_limits);
     if (*study_cmd) return run_study(study_args);
     if (*verify_cmd) return verify(verify_dir);
     return info();

@@ -11,6 +11,8 @@
 
 #include <sys/statvfs.h>
 
+#include <toml++/toml.h>
+
 #include "runout/materials.hpp"
 #include "runout/polygon.hpp"
 #include "runout/scene_parser.hpp"
@@ -222,11 +224,34 @@ RunCost estimate_cost(const Scene& scene, Method method) {
   return c;
 }
 
-void require_cost(const Scene& scene, Method method, const CostLimits& limits) {
+namespace {
+
+// "name:line: key" where the scene gives key (table.key) and no override
+// replaced it, else "key".
+std::string located(const std::string& key, const Scene& scene, const SceneSource& source,
+                    int& line) {
+  line = 0;
+  for (const std::string& o : scene.overrides)
+    if (o.rfind(key + " =", 0) == 0) return key;
+  if (source.text.empty()) return key;
+  try {
+    const toml::table root = toml::parse(source.text, source.name);
+    if (const toml::node* node = root.at_path(key).node())
+      line = static_cast<int>(node->source().begin.line);
+  } catch (const toml::parse_error&) {
+  }
+  return line > 0 ? source.name + ":" + std::to_string(line) + ": " + key : key;
+}
+
+}  // namespace
+
+void require_cost(const Scene& scene, Method method, const CostLimits& limits,
+                  const SceneSource& source) {
   const RunCost c = estimate_cost(scene, method);
+  int line = 0;
   // The depth-averaged model steps with its own, much longer, time step.
   if (method != Method::Dam && c.steps > limits.max_steps)
-    throw SceneError("time.end: the run needs at least " + number_text(c.steps) +
+    throw SceneError(located("time.end", scene, source, line) + ": the run needs at least " + number_text(c.steps) +
                          " steps (time.end = " + number_text(scene.time.end) +
                          " s over the initial time step of " + number_text(c.initial_dt) +
                          " s, from time.courant, grid.cell_size and the P-wave speed of "
@@ -235,14 +260,15 @@ void require_cost(const Scene& scene, Method method, const CostLimits& limits) {
                          "grid.cell_size, or raise the limit with " + limits.steps_option,
                      0);
   if (c.output_bytes > limits.max_output_bytes)
-    throw SceneError("time.output_interval: the run writes about " + number_text(c.frames) +
+    throw SceneError(located("time.output_interval", scene, source, line) +
+                         ": the run writes about " + number_text(c.frames) +
                          " frames of " + number_text(estimate_memory(scene, method).items) +
                          (method == Method::Dam ? " elements" : " particles") + ", about " +
                          byte_text(c.output_bytes) + " uncompressed, more than " +
                          limits.output_limit_is + " of " + byte_text(limits.max_output_bytes) +
                          "; raise time.output_interval or shorten time.end, or raise the "
                          "limit with " + limits.output_option,
-                     0);
+                     line);
 }
 
 std::optional<double> free_disk_bytes(const std::string& path) {

@@ -66,11 +66,19 @@ struct CostLimits {
   std::string output_limit_is = "the limit";  // "the limit", or what else bounds it (a disk)
 };
 
-// Throws SceneError (line 0: the check comes after the overrides) when the
-// MPM run needs more steps than limits.max_steps (naming time.end, the
-// step and what sets it) or writes more than limits.max_output_bytes
-// (naming time.output_interval, the frames and their size).
-void require_cost(const Scene& scene, Method method, const CostLimits& limits);
+// The scene's text and the name its errors give it, for the line of a key.
+struct SceneSource {
+  std::string name;
+  std::string text;
+};
+
+// Throws SceneError when the MPM run needs more steps than
+// limits.max_steps (naming time.end, the step and what sets it) or writes
+// more than limits.max_output_bytes (naming time.output_interval, the
+// frames and their size). The message gives the key's line in source, as
+// the parser's errors do, unless an override set the key (line 0 then).
+void require_cost(const Scene& scene, Method method, const CostLimits& limits,
+                  const SceneSource& source = {});
 
 // The bytes free to an unprivileged writer on the file system that holds
 // path (its nearest existing folder); nullopt where statvfs fails.
