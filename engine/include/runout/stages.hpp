@@ -378,39 +378,48 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
 // PIC/FLIP: FLIP carries the particle's own velocity plus the grid's change
 // (little dissipation), PIC takes the grid velocity; a per-step blend damps
 // at a rate (1 - flip) / dt, which grows as the step shrinks.
-RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
-                          const StepConfig& c) {
-  double pic_x = 0, pic_y = 0, dvx = 0, dvy = 0;
-  double bxx = 0, bxy = 0, byx = 0, byy = 0, dxx = 0, dyy = 0;
+RUNOUT_HD inline void g2p_apic(const ParticleView& P, int p, const Stencil2D& st,
+                               const GridView& g) {
+  double vx = 0, vy = 0, bxx = 0, bxy = 0, byx = 0, byy = 0, dxx = 0, dyy = 0;
   double gxx = 0, gxy = 0, gyx = 0, gyy = 0;
   for_each_node(g, st, [&](int n, double N, double dNx, double dNy, double rx, double ry) {
-    const double vx = g.vx[n], vy = g.vy[n];
-    pic_x += N * vx;
-    pic_y += N * vy;
-    dvx += N * (vx - g.v0x[n]);
-    dvy += N * (vy - g.v0y[n]);
-    bxx += N * vx * rx;
-    bxy += N * vx * ry;
-    byx += N * vy * rx;
-    byy += N * vy * ry;
+    const double ux = g.vx[n], uy = g.vy[n];
+    vx += N * ux;
+    vy += N * uy;
+    bxx += N * ux * rx;
+    bxy += N * ux * ry;
+    byx += N * uy * rx;
+    byy += N * uy * ry;
     dxx += N * rx * rx;
     dyy += N * ry * ry;
-    gxx += vx * dNx;
-    gxy += vx * dNy;
-    gyx += vy * dNx;
-    gyy += vy * dNy;
+    gxx += ux * dNx;
+    gxy += ux * dNy;
+    gyx += uy * dNx;
+    gyy += uy * dNy;
   });
+  const double degenerate = 1e-12 * g.h * g.h;
+  const bool use_x = dxx > degenerate, use_y = dyy > degenerate;
+  P.vx[p] = vx;
+  P.vy[p] = vy;
+  P.cxx[p] = use_x ? bxx / dxx : gxx;
+  P.cyx[p] = use_x ? byx / dxx : gyx;
+  P.cxy[p] = use_y ? bxy / dyy : gxy;
+  P.cyy[p] = use_y ? byy / dyy : gyy;
+}
+
+RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
+                          const StepConfig& c) {
   if (c.transfer == TransferKind::Apic) {
-    const double degenerate = 1e-12 * g.h * g.h;
-    const bool use_x = dxx > degenerate, use_y = dyy > degenerate;
-    P.vx[p] = pic_x;
-    P.vy[p] = pic_y;
-    P.cxx[p] = use_x ? bxx / dxx : gxx;
-    P.cyx[p] = use_x ? byx / dxx : gyx;
-    P.cxy[p] = use_y ? bxy / dyy : gxy;
-    P.cyy[p] = use_y ? byy / dyy : gyy;
+    g2p_apic(P, p, st, g);
     return;
   }
+  double pic_x = 0, pic_y = 0, dvx = 0, dvy = 0;
+  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
+    pic_x += N * g.vx[n];
+    pic_y += N * g.vy[n];
+    dvx += N * (g.vx[n] - g.v0x[n]);
+    dvy += N * (g.vy[n] - g.v0y[n]);
+  });
   P.vx[p] = c.flip_step * (P.vx[p] + dvx) + (1.0 - c.flip_step) * pic_x;
   P.vy[p] = c.flip_step * (P.vy[p] + dvy) + (1.0 - c.flip_step) * pic_y;
 }
