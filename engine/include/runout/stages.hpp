@@ -10,8 +10,9 @@
 //   2. grid_update:    v0_i = p_i/m_i, v_i = v0_i + dt f_i/m_i, Geo-contact with
 //                      the rigid base where the material reaches it, boundary
 //                      conditions
-//   3. g2p:            APIC: v_p = sum N v_i and the affine velocity C_p;
-//                      or v_p += the PIC/FLIP blend
+//   3. g2p:            FLIP, v_p += sum N (v_i - v0_i), with an optional PIC
+//                      share at a physical rate; or APIC, v_p = sum N v_i
+//                      and the affine velocity C_p; or a per-step blend
 //   4. p2g_momentum:   p_i = sum N m (v_p + C_p (x_i - x_p))   (the MUSL remap)
 //   5. remap_velocity: v_i = p_i/m_i and the mid-step vm_i = (v0_i + v_i)/2,
 //                      contact kinematics, boundary conditions
@@ -117,9 +118,10 @@ struct Stencil2D {
 // bx = |F_xx| + |F_xy| by by = |F_yx| + |F_yy|, and with the particle's
 // current area 4 lp^2 J (J = V / V0): lx = lp sqrt(J bx / by), and ly
 // alike. Exact for a stretch along the axes; a rotation leaves the square;
-// a shear gamma widens it as sqrt(1 + gamma) only. This is the rectangular
-// form of convected GIMP (cpGIMP, Sadeghirad et al. 2011, whose
-// parallelogram it bounds), so a stretched particle's support still meets
+// a shear gamma widens it as sqrt(1 + gamma) only. This is an axis-aligned
+// convected GIMP (cpGIMP, Bardenhagen and Kober 2004, follows the domain's
+// stretch; CPDI, Sadeghirad, Brannon and Burghardt 2011, tracks the
+// parallelogram itself), so a stretched particle's support still meets
 // its neighbours' and material that is only stretched does not separate
 // (the numerical fracture of uGIMP). Each half-width is capped at h / 2,
 // the widest domain a three-node stencil holds, as CPDI codes limit domain
