@@ -528,9 +528,7 @@ void CudaSimulation::Impl::step(double dt) {
   sort_by_cell();
   const GridView g = grid;
   const ParticleView P = particles();
-  device_config.gravity_scale = gravity_factor(time + 0.5 * dt, device_config.gravity_ramp);
-  device_config.flip_step =
-      flip_share(device_config.transfer, device_config.flip, device_config.pic_time, dt);
+  configure_step(device_config, time, dt);
   const StepConfig& c = device_config;
   const StepScratch s{dx.get(), dy.get()};
   const int nodes = g.size();

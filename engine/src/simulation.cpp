@@ -255,8 +255,7 @@ void Simulation::step(double dt) {
   }
   const GridView g = grid_.view();
   const ParticleView P = particles_.view();
-  config_.gravity_scale = gravity_factor(time_ + 0.5 * dt, config_.gravity_ramp);
-  config_.flip_step = flip_share(config_.transfer, config_.flip, config_.pic_time, dt);
+  configure_step(config_, time_, dt);
   const StepConfig& c = config_;
   const StepScratch s{scratch_dx_.data(), scratch_dy_.data()};
   const int nodes = g.size();

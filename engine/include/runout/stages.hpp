@@ -96,6 +96,13 @@ RUNOUT_HD inline double flip_share(TransferKind transfer, double blend, double p
   return pic_time > 0.0 ? std::exp(-dt / pic_time) : 1.0;
 }
 
+// The parts of the configuration that depend on the step: the gravity of
+// its mid-time and its FLIP share. Both drivers call it before a step.
+RUNOUT_HD inline void configure_step(StepConfig& c, double t, double dt) {
+  c.gravity_scale = gravity_factor(t + 0.5 * dt, c.gravity_ramp);
+  c.flip_step = flip_share(c.transfer, c.flip, c.pic_time, dt);
+}
+
 // P-wave speed sqrt(M / rho) at the current density plus the particle's
 // speed: the signal speed of the CFL condition dt = C h / max(c + |v|).
 RUNOUT_HD inline double cfl_speed(const ParticleView& P, int p, const MaterialParams& mat) {
