@@ -2,7 +2,9 @@
 
 #include "FrameArrays.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
@@ -162,6 +164,14 @@ MorphologyArrays selected_morphology_arrays(vtkAlgorithm* algorithm) {
     if (!selected.empty()) *name = selected;
   }
   return arrays;
+}
+
+void select_morphology_arrays(vtkAlgorithm* algorithm) {
+  const MorphologyArrays arrays;
+  const std::string* names[] = {&arrays.velocity, &arrays.mass, &arrays.initial_position};
+  for (int index = 0; index < 3; ++index)
+    algorithm->SetInputArrayToProcess(index, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
+                                      names[index]->c_str());
 }
 
 std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out,

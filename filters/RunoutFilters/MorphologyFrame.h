@@ -25,6 +25,10 @@ struct MorphologyArrays {
 // name for one that selects none.
 MorphologyArrays selected_morphology_arrays(vtkAlgorithm* algorithm);
 
+// Points input arrays 0, 1 and 2 of `algorithm` at the engine's names: the
+// defaults of a filter that reads the morphology.
+void select_morphology_arrays(vtkAlgorithm* algorithm);
+
 // The morphology of a frame: measure_frame with profile bins of
 // bin_spacings particle spacings. Reads the points, the point arrays
 // `arrays` names, and the field data base_points (read_base_points) and

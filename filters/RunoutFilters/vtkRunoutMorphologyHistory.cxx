@@ -42,12 +42,7 @@ void AddLengthColumns(vtkTable* history, vtkTable* lengths)
 vtkRunoutMorphologyHistory::vtkRunoutMorphologyHistory()
 {
   this->SetNumberOfOutputPorts(2);
-  const runout::filters::MorphologyArrays arrays;
-  this->SetInputArrayToProcess(
-    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.velocity.c_str());
-  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.mass.c_str());
-  this->SetInputArrayToProcess(
-    2, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrays.initial_position.c_str());
+  runout::filters::select_morphology_arrays(this);
 }
 
 //------------------------------------------------------------------------------
