@@ -171,10 +171,7 @@ class Figures:
         lut = runout_pv.colour_by(particles, view, "velocity", "velocity magnitude (m/s)",
                             preset="Turbo", component="Magnitude",
                             data_range=None if speed is None else [0.0, speed])
-        text = simple.Text(registrationName="time label")
-        label = simple.Show(text, view)
-        label.WindowLocation = "Upper Left Corner"
-        label.Color = runout_pv.INK
+        text, label = self.time_label(view)
         label.FontSize = 16
         layout.SetSize(*self.size)
         return layout, view, text, map_ends(lut)
@@ -183,6 +180,16 @@ class Figures:
         """The camera on the particles of the whole run (run_bounds)."""
         simple.Render(view)
         runout_pv.fit_camera(view, self.bounds, exaggeration=[1.0, self.factor, 1.0], fill=0.52)
+
+    def time_label(self, view, t=None):
+        """The caption source and its display in the view's upper left
+        corner, reading label(t) when a time is given."""
+        text = (simple.Text(registrationName="time label") if t is None else
+                simple.Text(registrationName="time label", Text=self.label(t)))
+        label = simple.Show(text, view)
+        label.WindowLocation = "Upper Left Corner"
+        label.Color = runout_pv.INK
+        return text, label
 
     def label(self, t):
         """The picture's caption: its time and its vertical exaggeration."""
@@ -244,10 +251,7 @@ class Figures:
         curves = runout_pv.show(lines, view, z=1.0, scale=scale, LineWidth=2.5)
         lut = runout_pv.colour_by(curves, view, "speed", "speed (m/s), contours every "
                                   f"{step:g} m/s", preset="Turbo", data_range=[0.0, top])
-        text = simple.Text(registrationName="time label", Text=self.label(t))
-        label = simple.Show(text, view)
-        label.WindowLocation = "Upper Left Corner"
-        label.Color = runout_pv.INK
+        self.time_label(view, t)
         layout.SetSize(*self.size)
         simple.Render(view)
         runout_pv.fit_camera(view, bounds, exaggeration=scale)
@@ -327,10 +331,7 @@ class Figures:
             simple.AssignViewToLayout(view=view, layout=layout, hint=0)
             bands, _, _, lut = build_strain_bands(self.reader, view,
                                                   [1.0, float(self.factor), 1.0])
-            text = simple.Text(registrationName="time label", Text=self.label(t))
-            label = simple.Show(text, view)
-            label.WindowLocation = "Upper Left Corner"
-            label.Color = runout_pv.INK
+            self.time_label(view, t)
             layout.SetSize(*self.size)
             simple.Render(view)
             runout_pv.fit_camera(view, bounds, exaggeration=[1.0, self.factor, 1.0])

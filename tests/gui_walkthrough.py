@@ -85,14 +85,8 @@ def events(steps, config):
 
 def pixels(path):
     """(height, width, 3) int array of a PNG, top row first."""
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    data = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int)
+    from figures_check import png_pixels
+    width, height, data = png_pixels(path)
     return data.reshape(height, width, 3)[::-1]
 
 
