@@ -724,6 +724,18 @@ TEST(PlasticStrainFilter, MissingArraysAreErrorsWithEmptyOutputs) {
   EXPECT_NE(counter->last.find("GridSpacing"), std::string::npos) << counter->last;
   EXPECT_EQ(filter->GetGridOutput()->GetNumberOfPoints(), 0);
   EXPECT_EQ(particles(filter)->GetNumberOfPoints(), static_cast<vtkIdType>(lattice.points.size()));
+
+  // So does one particle scattered far from the others at the default
+  // spacing (as in the fuzzer's out-of-memory input): 2e7 nodes of 0.2 m.
+  Lattice scattered = lattice;
+  scattered.points.front() = {900, 900};
+  filter->SetGridSpacing(0);
+  filter->SetInputData(to_frame(scattered, slab.h));
+  filter->Update();
+  EXPECT_EQ(counter->errors, 4);
+  EXPECT_NE(counter->last.find("too many"), std::string::npos) << counter->last;
+  EXPECT_EQ(filter->GetGridOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(particles(filter)->GetNumberOfPoints(), static_cast<vtkIdType>(lattice.points.size()));
 }
 
 TEST(PlasticStrainFilter, EmptyFrameAndOneParticle) {

@@ -28,9 +28,11 @@ namespace
 {
 // Used when neither GridSpacing nor the frame's particle_spacing is known.
 constexpr double FallbackGridSpacing = 0.5;
-// A grid spacing far too small for the slide would exhaust the memory
-// (four arrays per node): refused beyond this many nodes.
-constexpr double MaximumGridNodes = 1e8;
+// A grid spacing far too small for the slide, or particles scattered far
+// apart, would exhaust the memory: about 60 bytes a node (four projected
+// arrays, their VTK copies and the coverage), so 1e7 nodes (a 5 km slide
+// on a 0.5 m grid 1 km high) take 0.6 GB. Refused beyond.
+constexpr double MaximumGridNodes = 1e7;
 
 // Why the frame's points, strains or ids cannot be used, or "". Ids are
 // cast to 64-bit integers, so they must lie within their range.
