@@ -23,22 +23,40 @@
 namespace {
 
 // True when every DataArray of the XML is ASCII and of a type VTK knows.
-// This target found two bugs in ParaView 5.11's own reader, which it then
+// This target found three bugs in ParaView 5.11's own reader, which it then
 // steps around so that the fuzzing goes on into the filters: a null
 // dereference in vtkXMLReader::ReadXMLInformation for a field-data
 // DataArray of an unknown type, and binary arrays whose (zlib) headers it
 // trusts for the size of an allocation (allocation-size-too-big). The
 // filters see the same arrays whichever the encoding, and ASCII numbers
 // are what mutations turn into NaNs, infinities and wrong counts.
-bool ascii_arrays_of_known_types(vtkXMLDataElement* element) {
+// A third: it sizes the connectivity by the last cell offset, so an offset
+// of 3e11 is a 2.5 TB allocation; no offset may exceed what the input could
+// list (an ASCII connectivity entry takes two bytes at least).
+bool offsets_within(vtkXMLDataElement* element, const std::string& xml) {
+  const char* name = element->GetAttribute("Name");
+  if (!name || std::string(name) != "offsets") return true;
+  // The parser keeps no character data of a DataArray, only where the
+  // element starts: its values follow the end of the start tag.
+  const std::size_t start = xml.find('>', static_cast<std::size_t>(element->GetXMLByteIndex()));
+  if (start == std::string::npos) return false;
+  std::istringstream values(xml.substr(start + 1, xml.find('<', start) - start - 1));
+  double offset = 0;
+  while (values >> offset)
+    if (!(offset <= static_cast<double>(xml.size()))) return false;
+  return true;
+}
+
+bool ascii_arrays_of_known_types(vtkXMLDataElement* element, const std::string& xml) {
   if (std::string(element->GetName()) == "DataArray") {
     int type = 0;
     const char* format = element->GetAttribute("format");
     if (!element->GetWordTypeAttribute("type", type) || !format || std::string(format) != "ascii")
       return false;
+    if (!offsets_within(element, xml)) return false;
   }
   for (int i = 0; i < element->GetNumberOfNestedElements(); ++i)
-    if (!ascii_arrays_of_known_types(element->GetNestedElement(i))) return false;
+    if (!ascii_arrays_of_known_types(element->GetNestedElement(i), xml)) return false;
   return true;
 }
 
@@ -47,7 +65,7 @@ bool readable_by_vtk(const std::string& xml) {
   vtkNew<vtkXMLDataParser> parser;
   parser->SetStream(&stream);
   return parser->Parse() && parser->GetRootElement() &&
-         ascii_arrays_of_known_types(parser->GetRootElement());
+         ascii_arrays_of_known_types(parser->GetRootElement(), xml);
 }
 
 void run_filter(vtkAlgorithm* filter, vtkUnstructuredGrid* frame) {
