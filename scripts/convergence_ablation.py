@@ -40,7 +40,7 @@ CASE2_ONLY = {
     "frictional, tau = 1 GPa": {("base", "interface"): '"frictional"',
                                 ("base", "shear_strength"): "1.0e9"},
 }
-COURANTS = (0.1, 0.2, 0.3)
+COURANTS = (0.1, 0.2, 0.25)
 
 
 def set_key(text, table, key, value):

@@ -116,7 +116,7 @@ TEST(SceneParser, OptionalTablesTakeDefaults) {
   EXPECT_EQ(s.solver.flip, defaults.solver.flip);
   EXPECT_EQ(s.solver.mass_threshold, defaults.solver.mass_threshold);
   EXPECT_EQ(s.solver.damping, defaults.solver.damping);
-  EXPECT_EQ(s.time.courant, 0.3);
+  EXPECT_EQ(s.time.courant, 0.2);
   EXPECT_EQ(s.grid.shape, ShapeKind::Gimp);
   EXPECT_EQ(s.materials[0].model, MaterialModel::Elastic);
   EXPECT_EQ(s.bodies[0].velocity, Eigen::Vector2d::Zero());
@@ -324,7 +324,7 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"OutputAfterEnd", 12, 12, "output_interval = 2.0", 12,
                   "time.output_interval", "must be <= time.end"},
         ErrorCase{"CourantAboveTheStableLimit", 12, 12, "output_interval = 0.1\ncourant = 0.6", 13,
-                  "time.courant", "must be <= 0.5 with shape gimp and transfer flip (got 0.6)"},
+                  "time.courant", "must be <= 0.25 with shape gimp and transfer flip (got 0.6)"},
         ErrorCase{"UnknownTransfer", 12, 12, "output_interval = 0.1\n[solver]\ntransfer = \"xpic\"",
                   14, "solver.transfer", "xpic"},
         ErrorCase{"NegativeGravityRamp", 12, 12, "output_interval = 0.1\n[gravity]\nramp = -1.0",
@@ -422,7 +422,21 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"BaseAndFixedBottom", 13, 13,
                   "[boundary]\nbottom = \"fixed\"\n[base]\nkind = \"planar\"\n", 14,
                   "boundary.bottom",
-                  "must be \"free\" when [base] is given: the base is the bottom"}),
+                  "must be \"free\" when [base] is given: the base is the bottom"},
+        ErrorCase{"PeriodicOnOneSide", 13, 13, "[boundary]\nleft = \"periodic\"\n", 14,
+                  "boundary.left", "needs the other side periodic too"},
+        ErrorCase{"PeriodicTop", 13, 13,
+                  "[boundary]\nleft = \"periodic\"\nright = \"periodic\"\ntop = \"periodic\"\n",
+                  16, "boundary.top", "is for left and right only"},
+        ErrorCase{"PeriodicOnAPolyline", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"polyline\"\npoints = [[0, 1], [10, 0]]\n"
+                  "[boundary]\nleft = \"periodic\"\nright = \"periodic\"",
+                  30, "boundary.left", "needs a planar base or none"},
+        ErrorCase{"PeriodicWithNonlocalSoftening", 13, 18,
+                  "[boundary]\nleft = \"periodic\"\nright = \"periodic\"\n\n[[material]]\n"
+                  "name = \"clay\"\nmodel = \"tresca\"\ndensity = 600.0\n"
+                  "youngs_modulus = 1.0e5\npoisson_ratio = 0.3\nsu0 = 1000\nnonlocal_length = 0.5",
+                  14, "boundary.left", "does not take nonlocal softening"}),
     [](const ::testing::TestParamInfo<ErrorCase>& info) { return std::string(info.param.name); });
 
 TEST(SceneParser, MissingFileHasNoLine) {
@@ -523,7 +537,7 @@ TEST(SceneWriter, EveryNonDefaultValueRoundTrips) {
       "[grid]\ncell_size = 0.1\nmin = [-1.3, 0.7]\nmax = [7.77, 3.33]\n"
       "shape = \"linear\"\ndomain = \"fixed\"\nppc = 3\n"
       "[boundary]\nleft = \"free\"\nright = \"fixed\"\nbottom = \"free\"\ntop = \"fixed\"\n"
-      "[time]\nend = 3\noutput_interval = 0.1\ncourant = 0.45\nrest_fraction = 0.003\n"
+      "[time]\nend = 3\noutput_interval = 0.1\ncourant = 0.25\nrest_fraction = 0.003\n"
       "rest_duration = 0.7\n"
       "[gravity]\nmagnitude = 9.80665\nslope_angle = -13.75\nramp = 0.75\n"
       "[solver]\ntransfer = \"pic_flip\"\nflip = 0.5\npic_cells = 12.5\nmass_threshold = 1e-7\n"

@@ -250,6 +250,12 @@ __global__ void remap_kernel(GridView g, StepConfig c, double dt) {
   if (n < g.size()) remap_velocity(g, n, c, dt);
 }
 
+// One thread per node row: the periodic exchange after a grid stage.
+__global__ void exchange_kernel(GridView g, Exchange after) {
+  const int j = blockIdx.x * blockDim.x + threadIdx.x;
+  if (j < g.ny) exchange_periodic(g, j, after);
+}
+
 // Per-particle velocity gradients, in structure-of-arrays.
 struct Gradients {
   double *xx, *xy, *yx, *yy;
@@ -288,12 +294,13 @@ __device__ inline double cell_mean(const CellSums& cs, int c) {
 
 __global__ void stress_kernel(ParticleView P, Gradients L, const int* cell, CellSums cs,
                               bool smooth, const MaterialParams* mats, double dt, StepScratch s,
-                              GuardLimits limits, double* speed) {
+                              StepConfig c, GuardLimits limits, double* speed) {
   const int p = blockIdx.x * blockDim.x + threadIdx.x;
   if (p >= P.n) return;
   VelocityGradient l{L.xx[p], L.xy[p], L.yx[p], L.yy[p]};
   if (smooth) set_volumetric_rate(l, cell_mean(cs, cell[p]));
   const double sp = stress_update(P, p, l, mats, dt, s);
+  wrap_periodic(P, p, c);
   speed[p] = particle_fault(P, p, limits) == Fault::None ? sp : -1.0;
 }
 
@@ -479,6 +486,7 @@ void CudaSimulation::Impl::fit_grid(double dt) {
                      b.ymax <= limits.ymax))
     fail(dt);
   GridView& g = grid;
+  if (config.period > 0.0) periodic_span(config, h, b.xmin, b.xmax);
   place_box(g, b.xmin, b.xmax, b.ymin, b.ymax, xmin_domain, ymin_domain, h);
   const std::size_t nodes = static_cast<std::size_t>(g.nx) * g.ny;
   for (auto& a : grid_arrays) a.reserve(nodes);  // grow-only
@@ -536,19 +544,28 @@ void CudaSimulation::Impl::step(double dt) {
   const int* cell = keys_out.get();
   const CellSums cs{cell_vol.get(), cell_sum.get()};
   const Gradients L{lxx.get(), lxy.get(), lyx.get(), lyy.get()};
+  const auto exchange = [&](Exchange after, const char* what) {
+    if (!(c.period > 0.0)) return;
+    exchange_kernel<<<blocks_for(g.ny), kThreads>>>(g, after);
+    RUNOUT_CUDA_LAUNCHED(what);
+  };
 
   p2g_kernel<<<pb, kThreads>>>(P, g, c);
   RUNOUT_CUDA_LAUNCHED("p2g");
+  exchange(Exchange::AfterP2g, "periodic exchange (p2g)");
   grid_update_kernel<<<nb, kThreads>>>(g, c, dt);
   RUNOUT_CUDA_LAUNCHED("grid_update");
+  exchange(Exchange::AfterGridUpdate, "periodic exchange (grid_update)");
   g2p_kernel<<<pb, kThreads>>>(P, g, c);
   RUNOUT_CUDA_LAUNCHED("g2p");
   RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.px, 0, nodes * sizeof(double)));
   RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.py, 0, nodes * sizeof(double)));
   p2g_momentum_kernel<<<pb, kThreads>>>(P, g, c);
   RUNOUT_CUDA_LAUNCHED("p2g_momentum");
+  exchange(Exchange::AfterMomentum, "periodic exchange (p2g_momentum)");
   remap_kernel<<<nb, kThreads>>>(g, c, dt);
   RUNOUT_CUDA_LAUNCHED("remap_velocity");
+  exchange(Exchange::AfterRemap, "periodic exchange (remap_velocity)");
 
   const auto clear_cells = [&] {
     RUNOUT_CUDA_CHECK(cudaMemsetAsync(cs.vol, 0, cells * sizeof(double)));
@@ -557,7 +574,7 @@ void CudaSimulation::Impl::step(double dt) {
   if (smooth) clear_cells();
   gradient_kernel<<<pb, kThreads>>>(P, g, c, dt, s, L, cell, cs, smooth);
   RUNOUT_CUDA_LAUNCHED("velocity_gradient");
-  stress_kernel<<<pb, kThreads>>>(P, L, cell, cs, smooth, device_materials.get(), dt, s,
+  stress_kernel<<<pb, kThreads>>>(P, L, cell, cs, smooth, device_materials.get(), dt, s, c,
                                   limits, speed.get());
   RUNOUT_CUDA_LAUNCHED("stress_update");
   if (smooth) {

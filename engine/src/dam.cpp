@@ -138,6 +138,9 @@ DamSolver::DamSolver(const Scene& scene)
       courant_(scene.time.courant) {
   if (scene.base.kind == BaseKind::None)
     throw SceneError("the depth-averaged method runs along a [base]; the scene has none", 0);
+  if (scene.boundary.left == BoundaryKind::Periodic)
+    throw SceneError("the depth-averaged method has no periodic boundaries (boundary.left, "
+                     "boundary.right); run the scene with the MPM", 0);
   require_memory(scene, Method::Dam);
   const BodySpec& body = scene.bodies.front();
   const MaterialSpec& material = scene.materials[body.material];

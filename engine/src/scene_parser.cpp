@@ -363,7 +363,30 @@ BoundarySpec read_boundary(TableReader r) {
       {"top", &boundary.top}};
   for (const auto& [key, side] : sides)
     if (auto v = r.find(key)) *side = v->choice(scene_text::kBoundaryNames).value;
+  // A periodic domain repeats along x: material leaving on one side
+  // enters on the other, so both sides are periodic or neither is.
+  for (const auto& [key, side] : sides)
+    if (*side == BoundaryKind::Periodic && (side == &boundary.bottom || side == &boundary.top))
+      r.need(key).fail("\"periodic\" is for left and right only (the domain repeats along x)");
+  const bool left = boundary.left == BoundaryKind::Periodic;
+  if (left != (boundary.right == BoundaryKind::Periodic))
+    r.need(left ? "left" : "right")
+        .fail("\"periodic\" needs the other side periodic too (boundary.left and boundary.right)");
   return boundary;
+}
+
+// A periodic domain must repeat whole: a planar base (the grid's bottom
+// line, the same at every x) or none, and no nonlocal averaging, whose
+// neighbourhoods do not reach across the seam.
+void check_periodic(const TableReader& boundary_table, const Scene& scene) {
+  if (scene.boundary.left != BoundaryKind::Periodic) return;
+  const Value left = boundary_table.need("left");
+  if (scene.base.kind == BaseKind::Polyline)
+    left.fail("\"periodic\" needs a planar base or none: a polyline base does not repeat");
+  for (const MaterialSpec& m : scene.materials)
+    if (m.nonlocal_length > 0.0)
+      left.fail("\"periodic\" does not take nonlocal softening (material \"" + m.name +
+                "\" has nonlocal_length): its averaging does not reach across the seam");
 }
 
 TimeSpec read_time(TableReader r, const GridSpec& grid, const SolverSpec& solver) {
@@ -699,6 +722,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   scene.gravity = read_gravity(root.optional_table("gravity"));
   scene.materials = read_materials(root);
   scene.bodies = read_bodies(root, scene.materials, scene.grid);
+  check_periodic(boundary, scene);
   scene.dam = read_dam(root.optional_table("dam"));
   scene.output = read_output(root.optional_table("output"));
   scene.overrides = read_run(root.optional_table("run"));

@@ -30,7 +30,8 @@ inline constexpr Named<TransferKind> kTransferNames[] = {
 inline constexpr Named<BoundaryKind> kBoundaryNames[] = {
     {"free", BoundaryKind::Free},
     {"slip", BoundaryKind::Slip},
-    {"fixed", BoundaryKind::Fixed}};
+    {"fixed", BoundaryKind::Fixed},
+    {"periodic", BoundaryKind::Periodic}};
 inline constexpr Named<MaterialModel> kModelNames[] = {
     {"elastic", MaterialModel::Elastic}, {"tresca", MaterialModel::Tresca}};
 inline constexpr Named<StrengthForm> kStrengthFormNames[] = {

@@ -52,6 +52,10 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
   // The parser snaps max up to a node; the tolerance absorbs the rounding.
   c.domain_nx = static_cast<int>(std::ceil((s.grid.max.x() - s.grid.min.x()) / h - 1e-9));
   c.domain_ny = static_cast<int>(std::ceil((s.grid.max.y() - s.grid.min.y()) / h - 1e-9));
+  if (s.boundary.left == BoundaryKind::Periodic) {
+    c.period = c.domain_nx * h;
+    c.domain_x0 = s.grid.min.x();
+  }
   c.interface = s.base.interface;
   c.shear_strength = s.base.shear_strength;
   c.friction = s.base.friction;
@@ -136,6 +140,7 @@ void Simulation::fit_grid(double dt) {
   const GuardLimits& g = limits_;
   if (non_finite > 0 || !(xmin >= g.xmin && ymin >= g.ymin && xmax <= g.xmax && ymax <= g.ymax))
     throw NumericalFailure(describe_faults(particles_, limits_, steps_, time_, dt));
+  if (config_.period > 0.0) periodic_span(config_, h_, xmin, xmax);
   grid_.fit(xmin, xmax, ymin, ymax, domain_min_.x(), domain_min_.y(), h_);
 }
 
@@ -262,9 +267,15 @@ void Simulation::step(double dt) {
 
   const Stencil2D* st = stencils_.data();
   const auto lower = [](double* a, int n, double v) { a[n] = std::min(a[n], v); };
+  const auto exchange = [&](Exchange after) {
+    if (c.period > 0.0)
+      for (int j = 0; j < g.ny; ++j) exchange_periodic(g, j, after);
+  };
   scatter([&](int p, auto add) { p2g(P, p, st[p], g, c, add, lower); });
+  exchange(Exchange::AfterP2g);
 #pragma omp parallel for if (nodes > kParallelMin)
   for (int n = 0; n < nodes; ++n) grid_update(g, n, c, dt);
+  exchange(Exchange::AfterGridUpdate);
   double basal = 0;  // in node order, so the same every run
   if (c.base.kind != BaseKind::None)
     for (int n = 0; n < nodes; ++n) basal += g.fbase[n];
@@ -274,8 +285,10 @@ void Simulation::step(double dt) {
   std::fill_n(g.px, nodes, 0.0);
   std::fill_n(g.py, nodes, 0.0);
   scatter([&](int p, auto add) { p2g_momentum(P, p, st[p], g, add); });
+  exchange(Exchange::AfterMomentum);
 #pragma omp parallel for if (nodes > kParallelMin)
   for (int n = 0; n < nodes; ++n) remap_velocity(g, n, c, dt);
+  exchange(Exchange::AfterRemap);
 
   VelocityGradient* L = gradients_.data();
 #pragma omp parallel for if (P.n > kParallelMin)
@@ -293,6 +306,7 @@ void Simulation::step(double dt) {
 #pragma omp parallel for reduction(max : smax) reduction(+ : bad) if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) {
     smax = std::max(smax, stress_update(P, p, L[p], mats, dt, s));
+    wrap_periodic(P, p, c);
     bad += particle_fault(P, p, limits) != Fault::None;
   }
   if (bad > 0) throw NumericalFailure(describe_faults(particles_, limits_, steps_, time_, dt));

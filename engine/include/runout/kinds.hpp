@@ -12,7 +12,8 @@ enum class DomainKind { Deforming, Fixed };
 // rate set in physical time, APIC (affine particle-in-cell, Jiang et al.
 // 2015), or a per-step blend of PIC and FLIP.
 enum class TransferKind { Flip, Apic, PicFlip };
-enum class BoundaryKind { Free, Slip, Fixed };
+// Periodic: left and right together, the domain repeating along x.
+enum class BoundaryKind { Free, Slip, Fixed, Periodic };
 enum class MaterialModel { Elastic, Tresca };
 // How the softened strength and the rate factor combine (SCENES.md):
 // additive su0 S + su0 R, multiplicative su0 S (1 + R).

@@ -29,7 +29,7 @@ struct BoundarySpec {
 struct TimeSpec {
   double end = 1.0;              // [s]
   double output_interval = 0.1;  // [s]
-  double courant = 0.3;
+  double courant = 0.2;
   // The run also ends at rest: kinetic energy below rest_fraction of its
   // peak for rest_duration seconds. rest_fraction = 0 switches it off.
   double rest_fraction = 0.0;

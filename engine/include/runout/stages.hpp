@@ -56,6 +56,9 @@ struct StepConfig {
   BoundaryKind left = BoundaryKind::Slip, right = BoundaryKind::Slip;
   BoundaryKind bottom = BoundaryKind::Fixed, top = BoundaryKind::Free;
   int domain_nx = 0, domain_ny = 0;
+  // Periodic along x (left and right BoundaryKind::Periodic): the period
+  // L = domain_nx h from domain_x0; 0: not periodic.
+  double period = 0, domain_x0 = 0;
   // The rigid base and its interface (Geo-contact); base.kind None: none.
   BaseView base;
   InterfaceKind interface = InterfaceKind::NoSlip;
@@ -63,12 +66,14 @@ struct StepConfig {
   double friction = 0;           // mu, Coulomb
 };
 
-// The largest Courant number a scene may ask for. Measured with FLIP and
-// GIMP (docs/convergence.md, "Courant limit"): the coarse case 2 runout at
-// 12 s moves 0.9 % from Courant 0.1 to 0.3, 2.3 % to 0.5, 6 % to 0.7 and
-// 23 % to 1.0; beyond 0.5 the time step is part of the answer. The other
-// transfers and linear shape functions are held to the same limit.
-inline double max_courant(ShapeKind, TransferKind) { return 0.5; }
+// The largest Courant number a scene may ask for. Measured with FLIP,
+// GIMP and lattice-reduced deforming domains (docs/convergence.md,
+// "Courant limit"): the coarse case 2 runout at 12 s is 19.58, 19.67 and
+// 19.71 m at Courant 0.1, 0.2 and 0.25, and 20.13 to 20.26 m at 0.3, 2.7 %
+// above 0.1; beyond 0.25 the time step is part of the answer. The column
+// collapse moves 0.07 % up to 0.3. The other transfers and linear shape
+// functions are held to the same limit.
+inline double max_courant(ShapeKind, TransferKind) { return 0.25; }
 
 // Per-particle scratch of one step: the displacement, applied at the end.
 struct StepScratch {
@@ -120,30 +125,67 @@ struct Stencil2D {
 };
 
 // The half-widths of a particle's GIMP domain. Fixed: the initial square of
-// half-width lp (uGIMP). Deforming: the deformed square F [-lp, lp]^2 is
-// replaced by a rectangle with the aspect ratio of its bounding box,
-// bx = |F_xx| + |F_xy| by by = |F_yx| + |F_yy|, and with the particle's
-// current area 4 lp^2 J (J = V / V0): lx = lp sqrt(J bx / by), and ly
-// alike. Exact for a stretch along the axes; a rotation leaves the square;
-// a shear gamma widens it as sqrt(1 + gamma) only. This is an axis-aligned
-// convected GIMP (cpGIMP, Bardenhagen and Kober 2004, follows the domain's
-// stretch; CPDI, Sadeghirad, Brannon and Burghardt 2011, tracks the
-// parallelogram itself), so a stretched particle's support still meets
-// its neighbours' and material that is only stretched does not separate
-// (the numerical fracture of uGIMP). Each half-width is capped at h / 2,
-// the widest domain a three-node stencil holds, as CPDI codes limit domain
-// size (Homel, Brannon and Guilkey 2016); the floor keeps gimp_1d finite.
+// half-width lp (uGIMP). Deforming: the particles started on a square
+// lattice of spacing 2 lp, which the motion maps, locally, to the lattice
+// spanned by a = F e1 and b = F e2; the domains must tile that lattice, so
+// that material that is only deformed does not separate. F's columns are
+// one basis of it, but under shear a poor one: simple shear gamma maps the
+// square to a parallelogram gamma cells long, while the particles still sit
+// on rows 2 lp apart, each as far from its neighbours as before. So the
+// basis is first reduced (Lagrange-Gauss: the shorter vector subtracted
+// from the longer while that shortens it), giving the most nearly
+// orthogonal basis of the same lattice; simple shear reduces to the square
+// again. Where one reduced vector lies along x, a = (s, 0), b = (t, u), the
+// lattice is rows |u| apart of points s apart, which rectangles s by |u|
+// tile exactly (as bricks in a wall, each row shifted by t). So the
+// domain takes the width |a_x| of the more nearly horizontal reduced
+// vector and the height |b_y| of the other, as its aspect ratio, and the
+// particle's current area 4 lp^2 J (J = V / V0): lx = lp sqrt(J |a_x| /
+// |b_y|), and ly alike. Exact for stretches along the axes and for shear
+// along either axis, a square for a rotation. Without the reduction, the
+// bounding box of F's parallelogram flattened the domains of a sheared
+// layer as 1 / sqrt(1 + gamma), leaving gaps between its rows: a Bingham
+// layer on a no-slip incline ran 16 % slow (docs/convergence.md, "Plug
+// flow"). This is an axis-aligned convected GIMP (cpGIMP, Bardenhagen and
+// Kober 2004, follows the domain's stretch; CPDI, Sadeghirad, Brannon and
+// Burghardt 2011, tracks the parallelogram itself). Each half-width is
+// capped at h / 2, the widest domain a three-node stencil holds, as CPDI
+// codes limit domain size (Homel, Brannon and Guilkey 2016); the floor
+// keeps gimp_1d finite.
+RUNOUT_HD inline void reduce_lattice_basis(double& ax, double& ay, double& bx, double& by) {
+  // Each pass at least halves the longer vector's excess, so a few dozen
+  // passes reach any finite shear; the bound keeps the loop finite on NaN.
+  for (int pass = 0; pass < 64; ++pass) {
+    if (ax * ax + ay * ay > bx * bx + by * by) {
+      const double tx = ax, ty = ay;
+      ax = bx;
+      ay = by;
+      bx = tx;
+      by = ty;
+    }
+    const double aa = ax * ax + ay * ay;
+    if (!(aa > 0.0)) return;
+    const double k = std::nearbyint((ax * bx + ay * by) / aa);
+    if (k == 0.0) return;
+    bx -= k * ax;
+    by -= k * ay;
+  }
+}
+
 RUNOUT_HD inline void domain_half_widths(const ParticleView& P, int p, const StepConfig& c,
                                          double h, double& lx, double& ly) {
   lx = ly = c.lp;
   if (c.domain == DomainKind::Fixed || c.shape == ShapeKind::Linear) return;
-  const double bx = std::fabs(P.fxx[p]) + std::fabs(P.fxy[p]);
-  const double by = std::fabs(P.fyx[p]) + std::fabs(P.fyy[p]);
+  double ax = P.fxx[p], ay = P.fyx[p], bx = P.fxy[p], by = P.fyy[p];
+  reduce_lattice_basis(ax, ay, bx, by);
+  // a the more nearly horizontal: a_x^2 / |a|^2 >= b_x^2 / |b|^2.
+  const bool a_horizontal = ax * ax * (bx * bx + by * by) >= bx * bx * (ax * ax + ay * ay);
+  const double wx = std::fabs(a_horizontal ? ax : bx), wy = std::fabs(a_horizontal ? by : ay);
   const double J = P.vol[p] / P.vol0[p];
-  if (!(J > 0.0 && bx > 0.0 && by > 0.0)) return;  // the guards stop such a run
+  if (!(J > 0.0 && wx > 0.0 && wy > 0.0)) return;  // the guards stop such a run
   const double floor = 1e-3 * c.lp, cap = 0.5 * h;
-  lx = std::fmin(cap, std::fmax(floor, c.lp * std::sqrt(J * bx / by)));
-  ly = std::fmin(cap, std::fmax(floor, c.lp * std::sqrt(J * by / bx)));
+  lx = std::fmin(cap, std::fmax(floor, c.lp * std::sqrt(J * wx / wy)));
+  ly = std::fmin(cap, std::fmax(floor, c.lp * std::sqrt(J * wy / wx)));
 }
 
 RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
@@ -332,8 +374,18 @@ RUNOUT_HD inline void contact_kinematics(bool stuck, double closing, double nx, 
 // removes energy without a viscosity scale, for quasi-static settling.
 RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c, double dt) {
   const double m = g.m[n];
+  // A node at the edge of the particles' support, with a sliver of their
+  // mass, is not accelerated (f / m would be huge) but moves with them at
+  // p / m, the mass-weighted mean of their velocities: held at zero, it
+  // put a spurious gradient v dN into every particle beside it (a rigid
+  // translation built stress wherever a particle's support edge came
+  // within 1e-4 h of a node).
   if (m <= c.min_node_mass) {
-    g.v0x[n] = g.v0y[n] = g.vx[n] = g.vy[n] = g.fbase[n] = 0.0;
+    double vx = m > 0.0 ? g.px[n] / m : 0.0, vy = m > 0.0 ? g.py[n] / m : 0.0;
+    constrain(g, c, n, vx, vy);
+    g.v0x[n] = g.vx[n] = vx;
+    g.v0y[n] = g.vy[n] = vy;
+    g.fbase[n] = g.stuck[n] = 0.0;
     return;
   }
   double v0x = g.px[n] / m, v0y = g.py[n] / m;
@@ -461,8 +513,13 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D
 // x0 + v0 t + g t^2 / 2 at any dt, where x += dt v would be off by g t dt / 2.
 RUNOUT_HD inline void remap_velocity(const GridView& g, int n, const StepConfig& c, double dt) {
   const double m = g.m[n];
-  if (m <= c.min_node_mass) {
-    g.vx[n] = g.vy[n] = g.vmx[n] = g.vmy[n] = 0.0;
+  if (m <= c.min_node_mass) {  // as in grid_update: moves with its particles
+    double vx = m > 0.0 ? g.px[n] / m : 0.0, vy = m > 0.0 ? g.py[n] / m : 0.0;
+    constrain(g, c, n, vx, vy);
+    g.vmx[n] = 0.5 * (g.v0x[n] + vx);
+    g.vmy[n] = 0.5 * (g.v0y[n] + vy);
+    g.vx[n] = vx;
+    g.vy[n] = vy;
     return;
   }
   double vx = g.px[n] / m, vy = g.py[n] / m;
@@ -568,6 +625,92 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Veloci
   P.x[p] += s.dx[p];
   P.y[p] += s.dy[p];
   return cfl_speed(P, p, mat);
+}
+
+// Periodic along x, as halo exchange in a domain-decomposed MPM (ExaMPM,
+// Cabana's periodic halos): the box spans the period and one ghost column
+// below it and two above (global columns -1, N and N+1 of N cells), where
+// the stencils of particles near the seam reach. After a scatter each
+// ghost's sums are added into the column it repeats (N - 1, 0 and 1) and
+// copied back, so the nodes on both sides of the seam hold the same sums;
+// after a node stage the results are copied out again, so that every
+// stage downstream reads one value per physical node. The scatter itself
+// is unchanged (the CPU's colouring and the GPU's atomics never wrap).
+// periodic_span gives place_box the span of such a box; the rest are
+// called for each node row j.
+inline void periodic_span(const StepConfig& c, double h, double& xmin, double& xmax) {
+  xmin = c.domain_x0;
+  xmax = c.domain_x0 + c.period - 0.5 * h;  // in the last cell: box columns -1 .. N + 1
+}
+
+// The box columns of the ghosts, and of the columns they repeat.
+struct PeriodicColumns {
+  int ghost[3], image[3];
+};
+
+RUNOUT_HD inline PeriodicColumns periodic_columns(const GridView& g) {
+  const int n = g.nx - 3;  // cells in the period; box column k is global k - 1
+  return {{0, n + 1, n + 2}, {n, 1, 2}};
+}
+
+// After a scatter: the row's ghost sums into their columns, and back.
+// lower: the array is a minimum (the gap), not a sum.
+RUNOUT_HD inline void fold_periodic(const GridView& g, int j, double* a, bool lower = false) {
+  const PeriodicColumns k = periodic_columns(g);
+  for (int q = 0; q < 3; ++q) {
+    double& into = a[g.index(k.image[q], j)];
+    const double ghost = a[g.index(k.ghost[q], j)];
+    into = lower ? std::fmin(into, ghost) : into + ghost;
+  }
+  for (int q = 0; q < 3; ++q) a[g.index(k.ghost[q], j)] = a[g.index(k.image[q], j)];
+}
+
+// After a node stage: the ghosts take their columns' values.
+RUNOUT_HD inline void copy_periodic(const GridView& g, int j, double* a) {
+  const PeriodicColumns k = periodic_columns(g);
+  for (int q = 0; q < 3; ++q) a[g.index(k.ghost[q], j)] = a[g.index(k.image[q], j)];
+}
+
+// The periodic exchange after each grid stage, per node row. The base
+// force of a ghost is zeroed after the copy, so that its sum counts each
+// node once.
+enum class Exchange { AfterP2g, AfterGridUpdate, AfterMomentum, AfterRemap };
+
+RUNOUT_HD inline void exchange_periodic(const GridView& g, int j, Exchange after) {
+  switch (after) {
+    case Exchange::AfterP2g: {
+      double* const sums[] = {g.m, g.vol, g.px, g.py, g.fx, g.fy};
+      for (double* a : sums) fold_periodic(g, j, a);
+      fold_periodic(g, j, g.gap, true);
+      break;
+    }
+    case Exchange::AfterGridUpdate: {
+      double* const results[] = {g.v0x, g.v0y, g.vx, g.vy, g.stuck};
+      for (double* a : results) copy_periodic(g, j, a);
+      const PeriodicColumns k = periodic_columns(g);
+      for (int q = 0; q < 3; ++q) g.fbase[g.index(k.ghost[q], j)] = 0.0;
+      break;
+    }
+    case Exchange::AfterMomentum:
+      fold_periodic(g, j, g.px);
+      fold_periodic(g, j, g.py);
+      break;
+    case Exchange::AfterRemap: {
+      double* const results[] = {g.vx, g.vy, g.vmx, g.vmy};
+      for (double* a : results) copy_periodic(g, j, a);
+      break;
+    }
+  }
+}
+
+// A particle that has left the period re-enters on the other side. Its
+// initial position moves with it, so its displacement x - x0 stays the
+// distance it travelled.
+RUNOUT_HD inline void wrap_periodic(const ParticleView& P, int p, const StepConfig& c) {
+  if (!(c.period > 0.0)) return;
+  const double shift = c.period * std::floor((P.x[p] - c.domain_x0) / c.period);
+  P.x[p] -= shift;
+  P.x0[p] -= shift;
 }
 
 }  // namespace runout
