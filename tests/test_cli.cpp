@@ -43,6 +43,23 @@ TEST_F(Cli, VersionAndHelp) {
   EXPECT_NE(help.output.find("check"), std::string::npos);
 }
 
+// OpenMP threads sleep at barriers unless the user chose otherwise: spinning
+// ones made two threads half as fast as one beside another busy process
+// (README, "Performance").
+TEST_F(Cli, OpenMpWaitsPassivelyUnlessTheUserSetsThePolicy) {
+  const char* user = std::getenv("OMP_WAIT_POLICY");
+  const std::string saved = user ? user : "";
+  unsetenv("OMP_WAIT_POLICY");
+  const Result passive = run_cli("info");
+  setenv("OMP_WAIT_POLICY", "active", 1);
+  const Result active = run_cli("info");
+  if (user) setenv("OMP_WAIT_POLICY", saved.c_str(), 1); else unsetenv("OMP_WAIT_POLICY");
+  EXPECT_EQ(passive.code, 0) << passive.output;
+  EXPECT_NE(passive.output.find("OpenMP wait policy: PASSIVE"), std::string::npos)
+      << passive.output;
+  EXPECT_NE(active.output.find("OpenMP wait policy: active"), std::string::npos) << active.output;
+}
+
 TEST_F(Cli, UsageErrorIs64) {
   EXPECT_EQ(run_cli("run --no-such-flag").code, 64);
   EXPECT_EQ(run_cli("").code, 64);

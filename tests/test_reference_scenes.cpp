@@ -51,7 +51,7 @@ double quantile(std::vector<double> v, double q) {
 // 6.5 s), and a slide that came to rest at its limit (basal stress rho g
 // sin(theta) H = su at H = 4.87 m) yields a little at every swing: at 1 m
 // cells the toe creeps about 3 cm/s and the kinetic energy grows slowly
-// (docs/convergence.md, "What is left"). Until 1bfa618 it stopped, held by
+// (docs/convergence.md, "What is left"). Until 0c4c054 it stopped, held by
 // the too-stiff basal shear zone of the flattened particle domains.
 TEST(ReferenceScenes, Case2NoSlipFlowEnds) {
   const Scene s = coarse("case2_elongation_noslip");

@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +22,7 @@
 #include <optional>
 
 #include "budget_check.hpp"
+#include "openmp_wait.hpp"
 #include "progress.hpp"
 #include "study_command.hpp"
 #include "runout/checkpoint.hpp"
@@ -334,7 +336,9 @@ int verify(const std::string& dir) {
 }
 
 int info() {
-  std::printf("runout %s\nOpenMP threads: %d\n", RUNOUT_VERSION, omp_get_max_threads());
+  const char* wait = std::getenv("OMP_WAIT_POLICY");
+  std::printf("runout %s\nOpenMP threads: %d\nOpenMP wait policy: %s\n", RUNOUT_VERSION,
+              omp_get_max_threads(), wait ? wait : "(libgomp's default)");
   std::string why;
   const auto devices = cuda_devices(why);
   if (devices.empty()) std::printf("CUDA devices: none (%s)\n", why.c_str());
@@ -345,6 +349,7 @@ int info() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  runout::cli::use_passive_openmp_wait(argv);
   CLI::App app{"Runout: submarine landslide runout with the material point method"};
   app.set_version_flag("--version", std::string("runout ") + RUNOUT_VERSION);
   app.require_subcommand(1);
