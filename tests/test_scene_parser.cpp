@@ -201,6 +201,14 @@ std::string with_base(const std::string& base_lines) {
   return replace_lines(25, 25, "max = [3.0, 2.0]\n\n[base]\n" + base_lines);
 }
 
+// A name is any printable text: letters of any script pass, while controls
+// and formatting characters (tests/bad_scenes/scene_name_with_*) do not.
+TEST(SceneParser, NameMayHoldAnyPrintableLetters) {
+  const Scene s = parse_scene(replace_lines(2, 2, "name = \"Storegga_\u00f8st_\u6ed1\u5761\""),
+                              "utf8.toml");
+  EXPECT_EQ(s.name, "Storegga_\u00f8st_\u6ed1\u5761");
+}
+
 TEST(SceneParser, PlanarBaseFreesTheBottom) {
   const Scene s = parse_scene(with_base("kind = \"planar\""), "planar.toml");
   EXPECT_EQ(s.base.kind, BaseKind::Planar);

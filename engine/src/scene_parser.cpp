@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <cstdio>
 #include <vector>
 
 #include <toml++/toml.h>
@@ -313,12 +314,56 @@ void snap_max_to_node(GridSpec& grid) {
 
 // The name becomes file names (<name>.pvd, the default folder out/<name>),
 // so it must be one: a path separator would write outside the folder.
+// The scene name becomes the output folder's and its files' names, the
+// longest "." + name + ".pvd.manifest.tmp.<pid>.<n>", about 40 bytes more
+// than the name, within the 255 bytes a file name may have on Linux.
+constexpr std::size_t kMaxSceneNameBytes = 200;
+
+// Whether a code point prints as itself: not a control (C0, DEL, C1) and
+// not one of the format characters that make a name show other than it is
+// or break a line (bidirectional marks, embeddings, overrides and
+// isolates, zero-width characters, line and paragraph separators, the
+// byte-order mark).
+bool printable(char32_t c) {
+  if (c < 0x20 || (c >= 0x7F && c <= 0x9F)) return false;
+  if ((c >= 0x200B && c <= 0x200F) || (c >= 0x2028 && c <= 0x202E)) return false;
+  if ((c >= 0x2066 && c <= 0x2069) || c == 0xFEFF) return false;
+  return true;
+}
+
+// The code points of a UTF-8 string (TOML strings are valid UTF-8: the
+// parser refuses a document that is not).
+std::vector<char32_t> code_points(const std::string& text) {
+  std::vector<char32_t> out;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const int extra = lead < 0x80 ? 0 : lead < 0xE0 ? 1 : lead < 0xF0 ? 2 : 3;
+    char32_t c = extra == 0 ? lead : lead & (0x3F >> extra);
+    for (int k = 1; k <= extra && i + k < text.size(); ++k)
+      c = (c << 6) | (static_cast<unsigned char>(text[i + k]) & 0x3F);
+    out.push_back(c);
+    i += extra + 1;
+  }
+  return out;
+}
+
 void check_scene_name(const Value& value, const std::string& name) {
   if (name.empty() || name == "." || name == "..")
     value.fail("must be a file name (got " + in_quotes(name) + ")");
+  if (name.size() > kMaxSceneNameBytes)
+    value.fail("must be at most " + std::to_string(kMaxSceneNameBytes) +
+               " bytes, as it names the output's files (got " + std::to_string(name.size()) +
+               ")");
   for (const char c : name)
-    if (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20)
+    if (c == '/' || c == '\\')
       value.fail("must be a file name, without '/', '\\' or control characters");
+  for (const char32_t c : code_points(name))
+    if (!printable(c)) {
+      char code[16];
+      std::snprintf(code, sizeof code, "U+%04X", static_cast<unsigned>(c));
+      value.fail(std::string("must be printable: it holds ") + code +
+                 " (a control or formatting character)");
+    }
 }
 
 void read_scene_info(TableReader r, Scene& scene) {
