@@ -90,7 +90,6 @@ int vtkRunoutMorphologyHistory::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
-  vtkTable* output = vtkTable::GetData(outputVector);
 
   if (this->CurrentTimeIndex == 0)
   {
@@ -105,11 +104,17 @@ int vtkRunoutMorphologyHistory::RequestData(
   // The history has no profile to show: any bin width does.
   runout::filters::FrameMorphology morphology;
   // The engine never writes a frame without particles: in a series, one is
-  // a frame that could not be read (a file the index lists is missing).
-  const std::string error = input->GetNumberOfPoints() == 0
-    ? std::string("the frame has no points (a file the index lists missing or unreadable?).")
-    : runout::filters::measure_point_set(input, runout::kMainBodyBinSpacings, morphology,
-        runout::filters::selected_morphology_arrays(this));
+  // a frame that could not be read (a file the index lists is missing or
+  // unreadable). It is skipped, so one lost frame costs one row.
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro(<< "Time step " << this->CurrentTimeIndex
+                    << ": the frame has no points (a file the index lists missing or "
+                       "unreadable?); skipped.");
+    return this->NextTimeStep(request, outputVector);
+  }
+  const std::string error = runout::filters::measure_point_set(input,
+    runout::kMainBodyBinSpacings, morphology, runout::filters::selected_morphology_arrays(this));
   if (!error.empty())
   {
     vtkErrorMacro(<< "Time step " << this->CurrentTimeIndex << ": " << error);
@@ -120,14 +125,20 @@ int vtkRunoutMorphologyHistory::RequestData(
   }
   runout::filters::append_morphology_row(
     this->History, runout::filters::frame_time_of(input), morphology);
+  return this->NextTimeStep(request, outputVector);
+}
 
+//------------------------------------------------------------------------------
+int vtkRunoutMorphologyHistory::NextTimeStep(
+  vtkInformation* request, vtkInformationVector* outputVector)
+{
   if (++this->CurrentTimeIndex < this->NumberOfTimeSteps)
   {
     return 1;
   }
   request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
   this->CurrentTimeIndex = 0;
-  output->ShallowCopy(this->History);
+  vtkTable::GetData(outputVector)->ShallowCopy(this->History);
   AddLengthColumns(this->History, vtkTable::GetData(outputVector, 1));
   return 1;
 }

@@ -53,6 +53,9 @@ private:
   vtkRunoutMorphologyHistory(const vtkRunoutMorphologyHistory&) = delete;
   void operator=(const vtkRunoutMorphologyHistory&) = delete;
 
+  // Moves on to the next time step, or, after the last, delivers the tables.
+  int NextTimeStep(vtkInformation* request, vtkInformationVector* outputVector);
+
   int NumberOfTimeSteps = 0;
   int CurrentTimeIndex = 0;
   vtkNew<vtkTable> History;  // the rows gathered so far
