@@ -129,17 +129,18 @@ def base_line(reader):
     return base
 
 
-def fit_camera(view, bounds, exaggeration=EXAGGERATION, fill=0.55, margin=1.0):
+def fit_camera(view, bounds, exaggeration=EXAGGERATION, fill=0.55, margin=1.0, size=None):
     """A parallel side-on camera with the slide's length (bounds of the
     particles, unexaggerated) across the view's width, or its exaggerated
-    height, whichever needs more room. Call after the view has its size."""
+    height, whichever needs more room. Call after the view has its size, or
+    give the size of the pictures to be taken of it."""
     xmin, xmax, ymin, ymax = bounds[:4]
     centre = [(xmin + xmax) / 2, exaggeration[1] * (ymin + ymax) / 2, 0.0]
     view.CameraParallelProjection = 1
     view.CameraFocalPoint = centre
     view.CameraPosition = [centre[0], centre[1], 100.0]
     view.CameraViewUp = [0.0, 1.0, 0.0]
-    width, height = view.ViewSize
+    width, height = size or view.ViewSize
     view.CameraParallelScale = max(fill * (xmax - xmin) * height / width,
                                    margin * exaggeration[1] * (ymax - ymin) * 0.5 + 1.0)
 

@@ -15,6 +15,7 @@ a test script with events in Debian's 5.11).
 """
 import json
 import os
+import sys
 
 from paraview import simple
 
@@ -81,18 +82,6 @@ def _representations():
     return rows
 
 
-def _fit(view, bounds):
-    """Parallel side-on camera with the slide's length across the view."""
-    xmin, xmax, ymin, ymax = bounds[:4]
-    centre = [(xmin + xmax) / 2, EXAGGERATION[1] * (ymin + ymax) / 2, 0.0]
-    view.CameraParallelProjection = 1
-    view.CameraFocalPoint = centre
-    view.CameraPosition = [centre[0], centre[1], 100.0]
-    view.CameraViewUp = [0.0, 1.0, 0.0]
-    width, height = SHOT
-    view.CameraParallelScale = max(0.55 * (xmax - xmin) * height / width,
-                                   0.6 * EXAGGERATION[1] * (ymax - ymin) + 1.0)
-
 
 def _shots(view, tag, folder):
     """Screenshots of the view as shown, then of each part alone."""
@@ -157,7 +146,12 @@ def runout_gui_step(what, tag, config_path):
             "sources": sorted(s.GetXMLName() for s in simple.GetSources().values()),
             "representations": _representations()}
     if reader is not None:
-        _fit(view, reader.GetDataInformation().GetBounds())
+        # The states' camera (states/runout_pv.py), framed for the shots.
+        if config["states"] not in sys.path:
+            sys.path.insert(0, config["states"])
+        import runout_pv
+        runout_pv.fit_camera(view, reader.GetDataInformation().GetBounds(),
+                             exaggeration=EXAGGERATION, margin=1.2, size=SHOT)
         step["shots"], step["size"] = _shots(view, tag, config["folder"])
         step["counts"] = {}
         for name, port, part in OVERLAYS:

@@ -213,7 +213,8 @@ def main():
         config = os.path.join(work, "config.json")
         result = os.path.join(work, "result.json")
         with open(config, "w") as f:
-            json.dump({"folder": folder, "result": result}, f)
+            json.dump({"folder": folder, "result": result,
+                       "states": os.path.join(source, "states")}, f)
         script = os.path.join(work, "events.xml")
         with open(script, "w") as f:
             f.write(events(os.path.join(source, "tests", "gui_steps.py"), config))

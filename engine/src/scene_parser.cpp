@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <cstdio>
 #include <vector>
 
 #include <toml++/toml.h>
@@ -312,11 +312,9 @@ void snap_max_to_node(GridSpec& grid) {
   }
 }
 
-// The name becomes file names (<name>.pvd, the default folder out/<name>),
-// so it must be one: a path separator would write outside the folder.
-// The scene name becomes the output folder's and its files' names, the
-// longest "." + name + ".pvd.manifest.tmp.<pid>.<n>", about 40 bytes more
-// than the name, within the 255 bytes a file name may have on Linux.
+// The longest file name a run makes of the scene name is
+// "." + name + ".pvd.manifest.tmp.<pid>.<n>", about 40 bytes more than the
+// name, within the 255 bytes a file name may have on Linux.
 constexpr std::size_t kMaxSceneNameBytes = 200;
 
 // Whether a code point prints as itself: not a control (C0, DEL, C1) and
@@ -347,6 +345,8 @@ std::vector<char32_t> code_points(const std::string& text) {
   return out;
 }
 
+// The name becomes file names (<name>.pvd, the default folder out/<name>),
+// so it must be one: a path separator would write outside the folder.
 void check_scene_name(const Value& value, const std::string& name) {
   if (name.empty() || name == "." || name == "..")
     value.fail("must be a file name (got " + in_quotes(name) + ")");
@@ -356,7 +356,7 @@ void check_scene_name(const Value& value, const std::string& name) {
                ")");
   for (const char c : name)
     if (c == '/' || c == '\\')
-      value.fail("must be a file name, without '/', '\\' or control characters");
+      value.fail("must be a file name, without '/' or '\\'");
   for (const char32_t c : code_points(name))
     if (!printable(c)) {
       char code[16];
@@ -410,8 +410,8 @@ BoundarySpec read_boundary(TableReader r) {
     if (auto v = r.find(key)) *side = v->choice(scene_text::kBoundaryNames).value;
   // A periodic domain repeats along x: material leaving on one side
   // enters on the other, so both sides are periodic or neither is.
-  for (const auto& [key, side] : sides)
-    if (*side == BoundaryKind::Periodic && (side == &boundary.bottom || side == &boundary.top))
+  for (const auto& [key, side] : {sides[2], sides[3]})  // bottom, top
+    if (*side == BoundaryKind::Periodic)
       r.need(key).fail("\"periodic\" is for left and right only (the domain repeats along x)");
   const bool left = boundary.left == BoundaryKind::Periodic;
   if (left != (boundary.right == BoundaryKind::Periodic))

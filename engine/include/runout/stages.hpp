@@ -68,11 +68,11 @@ struct StepConfig {
 
 // The largest Courant number a scene may ask for. Measured with FLIP,
 // GIMP and lattice-reduced deforming domains (docs/convergence.md,
-// "Courant limit"): the coarse case 2 runout at 12 s is 19.58, 19.67 and
-// 19.71 m at Courant 0.1, 0.2 and 0.25, and 20.13 to 20.26 m at 0.3, 2.7 %
-// above 0.1; beyond 0.25 the time step is part of the answer. The column
-// collapse moves 0.07 % up to 0.3. The other transfers and linear shape
-// functions are held to the same limit.
+// "Courant limit"): the coarse case 2 runout at 12 s is 19.35, 19.26,
+// 19.49 and 19.64 m at Courant 0.05, 0.1, 0.2 and 0.25, and 19.91 m at
+// 0.3, 2.9 % above 0.05; beyond 0.25 the time step is part of the answer.
+// The column collapse moves 0.4 % up to 1.0. The other transfers and
+// linear shape functions are held to the same limit.
 inline double max_courant(ShapeKind, TransferKind) { return 0.25; }
 
 // Per-particle scratch of one step: the displacement, applied at the end.
@@ -145,7 +145,7 @@ struct Stencil2D {
 // along either axis, a square for a rotation. Without the reduction, the
 // bounding box of F's parallelogram flattened the domains of a sheared
 // layer as 1 / sqrt(1 + gamma), leaving gaps between its rows: a Bingham
-// layer on a no-slip incline ran 16 % slow (docs/convergence.md, "Plug
+// layer on a no-slip incline ran 15 % slow (docs/convergence.md, "Plug
 // flow"). This is an axis-aligned convected GIMP (cpGIMP, Bardenhagen and
 // Kober 2004, follows the domain's stretch; CPDI, Sadeghirad, Brannon and
 // Burghardt 2011, tracks the parallelogram itself). Each half-width is
@@ -372,17 +372,26 @@ RUNOUT_HD inline void contact_kinematics(bool stuck, double closing, double nx, 
 
 // Stage 2. Cundall's local damping, f - alpha |f| sign(v) per component,
 // removes energy without a viscosity scale, for quasi-static settling.
+// The velocity of a node at or below min_node_mass: a node at the edge of
+// the particles' support, with a sliver of their mass, is not accelerated
+// (f / m would be huge) but moves with them at p / m, the mass-weighted
+// mean of their velocities, under the boundary conditions. Held at zero,
+// it put a spurious gradient v dN into every particle beside it (a rigid
+// translation built stress wherever a particle's support edge came within
+// 1e-4 h of a node).
+RUNOUT_HD inline void light_node_velocity(const GridView& g, const StepConfig& c, int n,
+                                          double& vx, double& vy) {
+  const double m = g.m[n];
+  vx = m > 0.0 ? g.px[n] / m : 0.0;
+  vy = m > 0.0 ? g.py[n] / m : 0.0;
+  constrain(g, c, n, vx, vy);
+}
+
 RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c, double dt) {
   const double m = g.m[n];
-  // A node at the edge of the particles' support, with a sliver of their
-  // mass, is not accelerated (f / m would be huge) but moves with them at
-  // p / m, the mass-weighted mean of their velocities: held at zero, it
-  // put a spurious gradient v dN into every particle beside it (a rigid
-  // translation built stress wherever a particle's support edge came
-  // within 1e-4 h of a node).
   if (m <= c.min_node_mass) {
-    double vx = m > 0.0 ? g.px[n] / m : 0.0, vy = m > 0.0 ? g.py[n] / m : 0.0;
-    constrain(g, c, n, vx, vy);
+    double vx, vy;
+    light_node_velocity(g, c, n, vx, vy);
     g.v0x[n] = g.vx[n] = vx;
     g.v0y[n] = g.vy[n] = vy;
     g.fbase[n] = g.stuck[n] = 0.0;
@@ -513,9 +522,9 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D
 // x0 + v0 t + g t^2 / 2 at any dt, where x += dt v would be off by g t dt / 2.
 RUNOUT_HD inline void remap_velocity(const GridView& g, int n, const StepConfig& c, double dt) {
   const double m = g.m[n];
-  if (m <= c.min_node_mass) {  // as in grid_update: moves with its particles
-    double vx = m > 0.0 ? g.px[n] / m : 0.0, vy = m > 0.0 ? g.py[n] / m : 0.0;
-    constrain(g, c, n, vx, vy);
+  if (m <= c.min_node_mass) {
+    double vx, vy;
+    light_node_velocity(g, c, n, vx, vy);
     g.vmx[n] = 0.5 * (g.v0x[n] + vx);
     g.vmy[n] = 0.5 * (g.v0y[n] + vy);
     g.vx[n] = vx;
@@ -653,6 +662,12 @@ RUNOUT_HD inline PeriodicColumns periodic_columns(const GridView& g) {
   return {{0, n + 1, n + 2}, {n, 1, 2}};
 }
 
+// After a node stage: the ghosts take their columns' values.
+RUNOUT_HD inline void copy_periodic(const GridView& g, int j, double* a) {
+  const PeriodicColumns k = periodic_columns(g);
+  for (int q = 0; q < 3; ++q) a[g.index(k.ghost[q], j)] = a[g.index(k.image[q], j)];
+}
+
 // After a scatter: the row's ghost sums into their columns, and back.
 // lower: the array is a minimum (the gap), not a sum.
 RUNOUT_HD inline void fold_periodic(const GridView& g, int j, double* a, bool lower = false) {
@@ -662,13 +677,7 @@ RUNOUT_HD inline void fold_periodic(const GridView& g, int j, double* a, bool lo
     const double ghost = a[g.index(k.ghost[q], j)];
     into = lower ? std::fmin(into, ghost) : into + ghost;
   }
-  for (int q = 0; q < 3; ++q) a[g.index(k.ghost[q], j)] = a[g.index(k.image[q], j)];
-}
-
-// After a node stage: the ghosts take their columns' values.
-RUNOUT_HD inline void copy_periodic(const GridView& g, int j, double* a) {
-  const PeriodicColumns k = periodic_columns(g);
-  for (int q = 0; q < 3; ++q) a[g.index(k.ghost[q], j)] = a[g.index(k.image[q], j)];
+  copy_periodic(g, j, a);
 }
 
 // The periodic exchange after each grid stage, per node row. The base
