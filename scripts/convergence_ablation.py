@@ -7,7 +7,7 @@ two at a time, and writes one CSV row per run: scene, variant, Courant,
 toe runout at the end time, steps, wall time. Usage:
 
   scripts/convergence_ablation.py [--runout build/engine/runout] [--out DIR]
-                                  [--only case2|column] [--jobs 2]
+                                  [--only case2|column] [--variant TEXT] [--jobs 2]
 """
 import argparse
 import concurrent.futures
@@ -30,7 +30,9 @@ SCENES = {
 VARIANTS = {
     "default (pure FLIP, deforming domains)": {},
     "FLIP, PIC share over 200 cell crossings": {("solver", "pic_cells"): "200"},
+    "FLIP, XPIC(5) every 40 cell crossings": {("solver", "xpic_cells"): "40"},
     "APIC": {("solver", "transfer"): '"apic"'},
+    "XPIC(5) every step": {("solver", "transfer"): '"xpic"'},
     "per-step blend, flip 0.99": {("solver", "transfer"): '"pic_flip"', ("solver", "flip"): "0.99"},
     "fixed domains (uGIMP)": {("grid", "domain"): '"fixed"'},
     "no volumetric smoothing": {("solver", "volumetric_smoothing"): "false"},
@@ -87,6 +89,7 @@ def main():
     ap.add_argument("--runout", default=os.path.join(ROOT, "build/engine/runout"))
     ap.add_argument("--out", default=os.path.join(ROOT, "out/ablation"))
     ap.add_argument("--only", choices=sorted(SCENES))
+    ap.add_argument("--variant", help="only the variants whose name contains this text")
     ap.add_argument("--jobs", type=int, default=2)
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
@@ -96,6 +99,8 @@ def main():
             continue
         variants = dict(VARIANTS, **(CASE2_ONLY if scene == "case2" else {}))
         for variant, changes in variants.items():
+            if a.variant and a.variant not in variant:
+                continue
             for courant in COURANTS:
                 jobs.append((scene, variant, changes, courant))
     writer = csv.writer(sys.stdout)

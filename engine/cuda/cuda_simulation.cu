@@ -235,14 +235,29 @@ __global__ void grid_update_kernel(GridView g, StepConfig c, double dt) {
   if (n < g.size()) grid_update(g, n, c, dt);
 }
 
-__global__ void g2p_kernel(ParticleView P, GridView g, StepConfig c) {
-  const int p = blockIdx.x * blockDim.x + threadIdx.x;
-  if (p < P.n) g2p(P, p, stencil_of(P, p, g, c), g, c);
+__global__ void xpic_start_kernel(GridView g, StepConfig c) {
+  const int n = blockIdx.x * blockDim.x + threadIdx.x;
+  if (n < g.size()) xpic_start(g, n, c);
 }
 
-__global__ void p2g_momentum_kernel(ParticleView P, GridView g, StepConfig c) {
+__global__ void p2g_smoothed_kernel(ParticleView P, GridView g, StepConfig c) {
   const int p = blockIdx.x * blockDim.x + threadIdx.x;
-  if (p < P.n) p2g_momentum(P, p, stencil_of(P, p, g, c), g, AtomicAdd{});
+  if (p < P.n) p2g_smoothed(P, p, stencil_of(P, p, g, c), g, AtomicAdd{});
+}
+
+__global__ void xpic_term_kernel(GridView g, StepConfig c, int k) {
+  const int n = blockIdx.x * blockDim.x + threadIdx.x;
+  if (n < g.size()) xpic_term(g, n, c, k);
+}
+
+// g2p reads only nodal velocities, so a particle's remap follows it in the
+// same thread (as the CPU driver's fused pass).
+__global__ void g2p_momentum_kernel(ParticleView P, GridView g, StepConfig c) {
+  const int p = blockIdx.x * blockDim.x + threadIdx.x;
+  if (p >= P.n) return;
+  const Stencil2D st = stencil_of(P, p, g, c);
+  g2p(P, p, st, g, c);
+  p2g_momentum(P, p, st, g, AtomicAdd{});
 }
 
 __global__ void remap_kernel(GridView g, StepConfig c, double dt) {
@@ -376,7 +391,7 @@ struct CudaSimulation::Impl {
   Buffer<double> dx, dy, lxx, lxy, lyx, lyy, speed;
   Buffer<int> keys_in, keys_out, values_in, values_out;
   Buffer<unsigned char> sort_temp;
-  static constexpr int kGridArrays = 15;  // the double arrays of GridView
+  static constexpr int kGridArrays = 19;  // the double arrays of GridView
   Buffer<double> grid_arrays[kGridArrays];
   GridView grid;  // device pointers
   int cells_x = 0, cells = 0;
@@ -492,7 +507,8 @@ void CudaSimulation::Impl::fit_grid(double dt) {
   for (auto& a : grid_arrays) a.reserve(nodes);  // grow-only
   double** const ptrs[kGridArrays] = {&g.m,  &g.vol, &g.px,  &g.py,    &g.fx,  &g.fy,
                                        &g.v0x, &g.v0y, &g.vx, &g.vy,    &g.vmx, &g.vmy,
-                                       &g.fbase, &g.gap, &g.stuck};
+                                       &g.fbase, &g.gap, &g.stuck, &g.qx,  &g.qy,
+                                       &g.xvx, &g.xvy};
   for (int k = 0; k < kGridArrays; ++k) *ptrs[k] = grid_arrays[k].get();
   for (int k = 0; k < 6; ++k)  // m, vol, p, f: the accumulated ones
     RUNOUT_CUDA_CHECK(cudaMemsetAsync(grid_arrays[k].get(), 0, nodes * sizeof(double)));
@@ -556,12 +572,24 @@ void CudaSimulation::Impl::step(double dt) {
   grid_update_kernel<<<nb, kThreads>>>(g, c, dt);
   RUNOUT_CUDA_LAUNCHED("grid_update");
   exchange(Exchange::AfterGridUpdate, "periodic exchange (grid_update)");
-  g2p_kernel<<<pb, kThreads>>>(P, g, c);
-  RUNOUT_CUDA_LAUNCHED("g2p");
+  if (c.xpic_now) {  // V* of XPIC(m), as Simulation::xpic_start_velocity
+    xpic_start_kernel<<<nb, kThreads>>>(g, c);
+    RUNOUT_CUDA_LAUNCHED("xpic_start");
+    for (int k = 2; k <= c.xpic_order; ++k) {
+      RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.px, 0, nodes * sizeof(double)));
+      RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.py, 0, nodes * sizeof(double)));
+      p2g_smoothed_kernel<<<pb, kThreads>>>(P, g, c);
+      RUNOUT_CUDA_LAUNCHED("p2g_smoothed");
+      exchange(Exchange::AfterMomentum, "periodic exchange (p2g_smoothed)");
+      xpic_term_kernel<<<nb, kThreads>>>(g, c, k);
+      RUNOUT_CUDA_LAUNCHED("xpic_term");
+      exchange(Exchange::AfterXpicTerm, "periodic exchange (xpic_term)");
+    }
+  }
   RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.px, 0, nodes * sizeof(double)));
   RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.py, 0, nodes * sizeof(double)));
-  p2g_momentum_kernel<<<pb, kThreads>>>(P, g, c);
-  RUNOUT_CUDA_LAUNCHED("p2g_momentum");
+  g2p_momentum_kernel<<<pb, kThreads>>>(P, g, c);
+  RUNOUT_CUDA_LAUNCHED("g2p and p2g_momentum");
   exchange(Exchange::AfterMomentum, "periodic exchange (p2g_momentum)");
   remap_kernel<<<nb, kThreads>>>(g, c, dt);
   RUNOUT_CUDA_LAUNCHED("remap_velocity");

@@ -12,7 +12,7 @@ void Grid::fit(double xmin, double xmax, double ymin, double ymax, double domain
   const std::size_t n = static_cast<std::size_t>(g.nx) * g.ny;
   if (n > m_.size()) {
     for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &vmx_, &vmy_,
-                    &fbase_, &gap_, &stuck_})
+                    &fbase_, &gap_, &stuck_, &qx_, &qy_, &xvx_, &xvy_})
       a->resize(n);
   }
   g.m = m_.data();
@@ -30,6 +30,10 @@ void Grid::fit(double xmin, double xmax, double ymin, double ymax, double domain
   g.fbase = fbase_.data();
   g.gap = gap_.data();
   g.stuck = stuck_.data();
+  g.qx = qx_.data();
+  g.qy = qy_.data();
+  g.xvx = xvx_.data();
+  g.xvy = xvy_.data();
   for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_}) std::fill_n(a->begin(), n, 0.0);
   std::fill_n(gap_.begin(), n, std::numeric_limits<double>::infinity());
 }

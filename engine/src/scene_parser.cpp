@@ -479,12 +479,18 @@ GravitySpec read_gravity(TableReader r) {
 }
 
 SolverSpec read_solver(TableReader r) {
-  r.check_keys({"transfer", "flip", "pic_cells", "mass_threshold", "damping",
-                "volumetric_smoothing"});
+  r.check_keys({"transfer", "flip", "pic_cells", "xpic_order", "xpic_cells", "mass_threshold",
+                "damping", "volumetric_smoothing"});
   SolverSpec solver;
   if (auto v = r.find("transfer")) solver.transfer = v->choice(scene_text::kTransferNames).value;
   if (auto v = r.find("flip")) solver.flip = v->number(between(0, 1, "[]"));
   if (auto v = r.find("pic_cells")) solver.pic_cells = v->number(at_least(0.0));
+  if (auto v = r.find("xpic_order")) solver.xpic_order = v->integer(between(1, 8, "[]"));
+  if (auto v = r.find("xpic_cells")) {
+    solver.xpic_cells = v->number(at_least(0.0));
+    if (solver.xpic_cells > 0.0 && solver.transfer != TransferKind::Flip)
+      v->fail("is a schedule for transfer \"flip\" (transfer \"xpic\" filters every step)");
+  }
   if (auto v = r.find("mass_threshold"))
     solver.mass_threshold = v->number(between(0, 1, "[)"));
   if (auto v = r.find("damping")) solver.damping = v->number(between(0, 1, "[)"));

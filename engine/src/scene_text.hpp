@@ -26,7 +26,7 @@ inline constexpr Named<ShapeKind> kShapeNames[] = {
 inline constexpr Named<DomainKind> kDomainNames[] = {
     {"deforming", DomainKind::Deforming}, {"fixed", DomainKind::Fixed}};
 inline constexpr Named<TransferKind> kTransferNames[] = {
-    {"flip", TransferKind::Flip}, {"apic", TransferKind::Apic}, {"pic_flip", TransferKind::PicFlip}};
+    {"flip", TransferKind::Flip}, {"apic", TransferKind::Apic}, {"pic_flip", TransferKind::PicFlip}, {"xpic", TransferKind::Xpic}};
 inline constexpr Named<BoundaryKind> kBoundaryNames[] = {
     {"free", BoundaryKind::Free},
     {"slip", BoundaryKind::Slip},

@@ -167,6 +167,8 @@ std::string to_toml(const Scene& scene) {
       << "\n"
       << "flip = " << number(scene.solver.flip) << "\n"
       << "pic_cells = " << number(scene.solver.pic_cells) << "\n"
+      << "xpic_order = " << scene.solver.xpic_order << "\n"
+      << "xpic_cells = " << number(scene.solver.xpic_cells) << "\n"
       << "mass_threshold = " << number(scene.solver.mass_threshold) << "\n"
       << "damping = " << number(scene.solver.damping) << "\n"
       << "volumetric_smoothing = " << (scene.solver.volumetric_smoothing ? "true" : "false")

@@ -59,6 +59,9 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
   c.interface = s.base.interface;
   c.shear_strength = s.base.shear_strength;
   c.friction = s.base.friction;
+  c.xpic_order = s.solver.xpic_order;
+  // As pic_time: xpic_cells crossings of a cell by the fastest P-wave.
+  c.xpic_period = c_max > 0.0 ? s.solver.xpic_cells * h / c_max : 0.0;
   return c;
 }
 
@@ -249,6 +252,28 @@ void Simulation::regularise_softening() {
   }
 }
 
+// V* of XPIC(m) (stages.hpp): m - 1 round trips of the start velocity.
+void Simulation::xpic_start_velocity() {
+  const GridView g = grid_.view();
+  const ParticleView P = particles_.view();
+  const StepConfig& c = config_;
+  const Stencil2D* st = stencils_.data();
+  const int nodes = g.size();
+#pragma omp parallel for if (nodes > kParallelMin)
+  for (int n = 0; n < nodes; ++n) xpic_start(g, n, c);
+  for (int k = 2; k <= c.xpic_order; ++k) {
+    std::fill_n(g.px, nodes, 0.0);
+    std::fill_n(g.py, nodes, 0.0);
+    scatter([&](int p, auto add) { p2g_smoothed(P, p, st[p], g, add); });
+    if (c.period > 0.0)
+      for (int j = 0; j < g.ny; ++j) exchange_periodic(g, j, Exchange::AfterMomentum);
+#pragma omp parallel for if (nodes > kParallelMin)
+    for (int n = 0; n < nodes; ++n) xpic_term(g, n, c, k);
+    if (c.period > 0.0)
+      for (int j = 0; j < g.ny; ++j) exchange_periodic(g, j, Exchange::AfterXpicTerm);
+  }
+}
+
 void Simulation::step(double dt) {
   fit_grid(dt);
   bin_particles();
@@ -279,12 +304,15 @@ void Simulation::step(double dt) {
   double basal = 0;  // in node order, so the same every run
   if (c.base.kind != BaseKind::None)
     for (int n = 0; n < nodes; ++n) basal += g.fbase[n];
-#pragma omp parallel for if (P.n > kParallelMin)
-  for (int p = 0; p < P.n; ++p) g2p(P, p, st[p], g, c);
-
+  if (c.xpic_now) xpic_start_velocity();
+  // g2p reads only nodal velocities, so each particle's remap can follow it
+  // in the same pass.
   std::fill_n(g.px, nodes, 0.0);
   std::fill_n(g.py, nodes, 0.0);
-  scatter([&](int p, auto add) { p2g_momentum(P, p, st[p], g, add); });
+  scatter([&](int p, auto add) {
+    g2p(P, p, st[p], g, c);
+    p2g_momentum(P, p, st[p], g, add);
+  });
   exchange(Exchange::AfterMomentum);
 #pragma omp parallel for if (nodes > kParallelMin)
   for (int n = 0; n < nodes; ++n) remap_velocity(g, n, c, dt);

@@ -26,6 +26,8 @@ struct GridView {
   double *fbase;            // base's tangential force on the slide at the node, along +s
   double *gap;              // min over the node's particles of their gap to the base
   double *stuck;            // 1 where Geo-contact held the node's material still, else 0
+  double *qx, *qy;          // XPIC: the current term (B S+ S)^(k-1) v0
+  double *xvx, *xvy;        // XPIC: the filtered start velocity V*
 
   RUNOUT_HD int index(int i, int j) const { return j * nx + i; }
   RUNOUT_HD int size() const { return nx * ny; }
@@ -64,7 +66,7 @@ class Grid {
  private:
   GridView view_;
   std::vector<double> m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_, fbase_,
-      gap_, stuck_;
+      gap_, stuck_, qx_, qy_, xvx_, xvy_;
 };
 
 }  // namespace runout

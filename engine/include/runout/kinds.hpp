@@ -11,7 +11,7 @@ enum class DomainKind { Deforming, Fixed };
 // Grid-to-particle velocity transfer: FLIP with a PIC share that damps at a
 // rate set in physical time, APIC (affine particle-in-cell, Jiang et al.
 // 2015), or a per-step blend of PIC and FLIP.
-enum class TransferKind { Flip, Apic, PicFlip };
+enum class TransferKind { Flip, Apic, PicFlip, Xpic };
 // Periodic: left and right together, the domain repeating along x.
 enum class BoundaryKind { Free, Slip, Fixed, Periodic };
 enum class MaterialModel { Elastic, Tresca };

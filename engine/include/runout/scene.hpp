@@ -51,6 +51,13 @@ struct SolverSpec {
   // time a P-wave takes to cross pic_cells cells (flip_share); 0, the
   // default: pure FLIP, as Uintah, CB-Geo and Anura3D run.
   double pic_cells = 0.0;
+  // XPIC(m) (Hammerquist and Nairn 2017, stages.hpp): every step with
+  // transfer "xpic"; with "flip", one XPIC step each time a P-wave crosses
+  // xpic_cells cells (0: never), a noise filter on a schedule of physical
+  // time, as NairnMPM runs it (periodicCFL), so that what it removes per
+  // second does not change with the Courant number.
+  int xpic_order = 5;
+  double xpic_cells = 0.0;
   double mass_threshold = 1e-9;   // nodes lighter than this fraction of a full cell's mass are not accelerated
   double damping = 0.0;           // Cundall local non-viscous damping coefficient, 0..1
   bool volumetric_smoothing = true;  // cell-averaged volumetric strain rate (anti-locking)

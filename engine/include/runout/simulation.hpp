@@ -83,6 +83,7 @@ class Simulation {
   // into cell_mean_.
   template <class Value>
   void cell_means(Value&& value);
+  void xpic_start_velocity();
   void smooth_volumetric_rates();
   void smooth_mean_stress();
   // Replaces the step's increment of xi by its nonlocal average

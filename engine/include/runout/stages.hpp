@@ -64,6 +64,9 @@ struct StepConfig {
   InterfaceKind interface = InterfaceKind::NoSlip;
   double shear_strength = 0;     // tau, Frictional
   double friction = 0;           // mu, Coulomb
+  int xpic_order = 5;            // m of XPIC(m)
+  double xpic_period = 0;        // [s] FLIP with an XPIC step every period
+  bool xpic_now = false;         // this step is an XPIC one
 };
 
 // The largest Courant number a scene may ask for. Measured with FLIP,
@@ -102,10 +105,14 @@ RUNOUT_HD inline double flip_share(TransferKind transfer, double blend, double p
 }
 
 // The parts of the configuration that depend on the step: the gravity of
-// its mid-time and its FLIP share. Both drivers call it before a step.
+// its mid-time, its FLIP share and whether it is an XPIC step. Both
+// drivers call it before a step.
 RUNOUT_HD inline void configure_step(StepConfig& c, double t, double dt) {
   c.gravity_scale = gravity_factor(t + 0.5 * dt, c.gravity_ramp);
   c.flip_step = flip_share(c.transfer, c.flip, c.pic_time, dt);
+  const double T = c.xpic_period;  // the steps that cross a multiple of T
+  c.xpic_now = c.transfer == TransferKind::Xpic ||
+               (T > 0.0 && std::floor((t + dt) / T) > std::floor(t / T));
 }
 
 // P-wave speed sqrt(M / rho) at the current density plus the particle's
@@ -483,6 +490,16 @@ RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, con
     g2p_apic(P, p, st, g);
     return;
   }
+  if (c.xpic_now) {
+    double ux = 0, uy = 0;
+    for_each_node(g, st, [&](int n, double N, double, double, double, double) {
+      ux += N * (g.vx[n] - g.v0x[n] + g.xvx[n]);
+      uy += N * (g.vy[n] - g.v0y[n] + g.xvy[n]);
+    });
+    P.vx[p] = ux;
+    P.vy[p] = uy;
+    return;
+  }
   double pic_x = 0, pic_y = 0, dvx = 0, dvy = 0;
   for_each_node(g, st, [&](int n, double N, double, double, double, double) {
     pic_x += N * g.vx[n];
@@ -492,6 +509,70 @@ RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, con
   });
   P.vx[p] = c.flip_step * (P.vx[p] + dvx) + (1.0 - c.flip_step) * pic_x;
   P.vy[p] = c.flip_step * (P.vy[p] + dvy) + (1.0 - c.flip_step) * pic_y;
+}
+
+// XPIC(m) (Hammerquist and Nairn 2017). With S the interpolation to the
+// particles, S+ the mass-weighted projection to the nodes and B the
+// constraints grid_update puts on the start velocity (a stuck base node
+// holds it still), P = S B S+ maps particle velocities to the part the
+// grid holds, and v0 = B S+ v_p. FLIP keeps v_p - P v_p, all that the grid
+// cannot hold, including modes no node ever sees (its null space); PIC
+// drops it with everything sub-cell. XPIC(m) replaces v_p in the FLIP
+// update by v* = (I - (I - P)^m) v_p = sum_k (-1)^(k+1) C(m,k) P^k v_p,
+// which removes the null space (P e = 0 leaves (I - P)^m e = e), and of a
+// mode that one round trip keeps to 1 - eps it keeps 1 - eps^m. Since
+// P^k v_p = S Q^(k-1) v0 with Q = B S+ S, the update is the interpolation of
+// one grid field, v_p = S (v - v0 + V*), V* = sum_k (-1)^(k+1) C(m,k)
+// Q^(k-1) v0, built by m - 1 round trips on the grid: xpic_start, then
+// p2g_smoothed and xpic_term for k = 2 .. m. XPIC(1) is PIC.
+RUNOUT_HD inline double xpic_coefficient(int m, int k) {
+  double c = 1.0;  // C(m, k)
+  for (int i = 1; i <= k; ++i) c = c * (m - k + i) / i;
+  return k % 2 == 1 ? c : -c;
+}
+
+RUNOUT_HD inline void xpic_start(const GridView& g, int n, const StepConfig& c) {
+  g.qx[n] = g.v0x[n];
+  g.qy[n] = g.v0y[n];
+  const double a = xpic_coefficient(c.xpic_order, 1);
+  g.xvx[n] = a * g.v0x[n];
+  g.xvy[n] = a * g.v0y[n];
+}
+
+// S of the current term at the particle, scattered as momentum into px, py.
+template <class Add>
+RUNOUT_HD inline void p2g_smoothed(const ParticleView& P, int p, const Stencil2D& st,
+                                   const GridView& g, Add&& add) {
+  double ux = 0, uy = 0;
+  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
+    ux += N * g.qx[n];
+    uy += N * g.qy[n];
+  });
+  const double m = P.mass[p];
+  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
+    if (N == 0.0) return;
+    add(g.px, n, N * m * ux);
+    add(g.py, n, N * m * uy);
+  });
+}
+
+// The next term, B S+ of the scattered momentum, added into V* with its
+// coefficient.
+RUNOUT_HD inline void xpic_term(const GridView& g, int n, const StepConfig& c, int k) {
+  const double m = g.m[n];
+  double ux = m > 0.0 ? g.px[n] / m : 0.0, uy = m > 0.0 ? g.py[n] / m : 0.0;
+  double nx, ny;
+  if (g.stuck[n] != 0.0 && base_contact_normal(g, c, n, nx, ny)) {
+    const double tx = ny, ty = -nx;
+    const double ut = ux * tx + uy * ty;
+    ux -= ut * tx;
+    uy -= ut * ty;
+  }
+  g.qx[n] = ux;
+  g.qy[n] = uy;
+  const double a = xpic_coefficient(c.xpic_order, k);
+  g.xvx[n] += a * ux;
+  g.xvy[n] += a * uy;
 }
 
 // Stage 4: the MUSL remap of the updated particle momentum.
@@ -683,7 +764,7 @@ RUNOUT_HD inline void fold_periodic(const GridView& g, int j, double* a, bool lo
 // The periodic exchange after each grid stage, per node row. The base
 // force of a ghost is zeroed after the copy, so that its sum counts each
 // node once.
-enum class Exchange { AfterP2g, AfterGridUpdate, AfterMomentum, AfterRemap };
+enum class Exchange { AfterP2g, AfterGridUpdate, AfterMomentum, AfterXpicTerm, AfterRemap };
 
 RUNOUT_HD inline void exchange_periodic(const GridView& g, int j, Exchange after) {
   switch (after) {
@@ -704,6 +785,11 @@ RUNOUT_HD inline void exchange_periodic(const GridView& g, int j, Exchange after
       fold_periodic(g, j, g.px);
       fold_periodic(g, j, g.py);
       break;
+    case Exchange::AfterXpicTerm: {
+      double* const results[] = {g.qx, g.qy, g.xvx, g.xvy};
+      for (double* a : results) copy_periodic(g, j, a);
+      break;
+    }
     case Exchange::AfterRemap: {
       double* const results[] = {g.vx, g.vy, g.vmx, g.vmy};
       for (double* a : results) copy_periodic(g, j, a);
