@@ -3,9 +3,11 @@
 // RUNOUT_CLI), and a small scene to run it on.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 namespace runout::cli_runner {
@@ -26,6 +28,29 @@ inline Result run_cli(const std::string& args) {
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
+
+// The built-in scene (case 1, a Tresca slide) run coarse (1 m cells, 2 x 2
+// particles: 800) to `end` seconds, one frame a second, into a temporary
+// folder named `name` that goes with it: a real run's frames, shear bands
+// from t = 1 s on, in a fraction of a second.
+class CoarseRun {
+ public:
+  CoarseRun(const std::string& name, double end)
+      : dir_(std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
+    std::filesystem::remove_all(dir_);
+    const Result r = run_cli("run --cell 1.0 --ppc 2 --end " + std::to_string(end) +
+                             " --threads 1 --quiet --out " + dir_.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+  }
+  ~CoarseRun() { std::filesystem::remove_all(dir_); }
+  CoarseRun(const CoarseRun&) = delete;
+  CoarseRun& operator=(const CoarseRun&) = delete;
+  const std::filesystem::path& dir() const { return dir_; }
+  std::filesystem::path pvd() const { return dir_ / "default.pvd"; }
+
+ private:
+  std::filesystem::path dir_;
+};
 
 // An elastic block on a 10-degree slope, no [base]: a fraction of a second.
 inline const char* const kSmallScene = R"(

@@ -1,8 +1,9 @@
-// vtkRunoutMorphology and vtkRunoutMorphologyHistory, and the mechanism
-// rule behind them (MorphologyRules.h), on synthetic slabs whose answers
-// are known: a translated block, a thinning and lengthening slab, a slab
-// with grabens, one particle, no particle, frames without their arrays, and
-// a three-frame series written by the engine's writer.
+// vtkRunoutMorphology and vtkRunoutMorphologyHistory on synthetic slabs
+// whose answers are known: a translated block, a thinning and lengthening
+// slab, a slab with grabens, one particle, no particle, frames without
+// their arrays, and a three-frame series written by the engine's writer.
+// The mechanism rule behind them (morphology_rules.hpp) is tested without
+// VTK in test_analysis_algorithms.cpp.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -27,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "MorphologyRules.h"
+#include "runout/analysis/morphology_rules.hpp"
 #include "filter_fixtures.hpp"
 #include "runout/vtu_writer.hpp"
 #include "vtkRunoutMorphology.h"
@@ -35,7 +36,7 @@
 
 namespace fs = std::filesystem;
 using runout::Particles;
-using runout::filters::Mechanism;
+using runout::analysis::Mechanism;
 using runout::filter_fixtures::ErrorCounter;
 using runout::filter_fixtures::value;
 
@@ -144,54 +145,6 @@ struct Morphology {
 };
 
 }  // namespace
-
-// ---- The rule on plain profiles ---------------------------------------
-
-TEST(MorphologyRules, ClosingFillsNarrowTroughsOnly) {
-  const std::vector<double> t = {4, 4, 1, 4, 4, 4, 1, 1, 1, 1, 4, 4};
-  const std::vector<double> closed = runout::filters::close_profile(t, 1);
-  const std::vector<double> want = {4, 4, 4, 4, 4, 4, 1, 1, 1, 1, 4, 4};
-  EXPECT_EQ(closed, want);
-  EXPECT_EQ(runout::filters::close_profile(t, 0), t);
-  EXPECT_TRUE(runout::filters::close_profile({}, 3).empty());
-}
-
-TEST(MorphologyRules, GrabensAreDeepTroughsBetweenHorsts) {
-  using runout::filters::count_grabens;
-  // Two grabens between horsts of the initial height 4.
-  EXPECT_EQ(count_grabens({1, 4, 4, 2, 2, 4, 4, 1.5, 4, 4, 1}, kSpacing, 4.0), 2);
-  // A flat or repeated bottom is one graben.
-  EXPECT_EQ(count_grabens({4, 2, 2, 2, 4}, kSpacing, 4.0), 1);
-  EXPECT_EQ(count_grabens({4, 2, 2.1, 2, 4}, kSpacing, 4.0), 1);
-  // Shallower than 20 % of the lower flank, or than 2 spacings.
-  EXPECT_EQ(count_grabens({4, 3.3, 4}, kSpacing, 4.0), 0);
-  EXPECT_EQ(count_grabens({1.0, 0.6, 1.0}, kSpacing, 1.0), 0);
-  // Flanks thinner than half the initial height: a thinned sheet, no horsts.
-  EXPECT_EQ(count_grabens({1.9, 0.5, 1.9}, kSpacing, 4.0), 0);
-  // A step down to the front is no trough; nor is a taper.
-  EXPECT_EQ(count_grabens({4, 4, 2, 2, 2}, kSpacing, 4.0), 0);
-  EXPECT_EQ(count_grabens({1, 2, 3, 4, 3, 2, 1}, kSpacing, 4.0), 0);
-  EXPECT_EQ(count_grabens({}, kSpacing, 4.0), 0);
-}
-
-TEST(MorphologyRules, MechanismRuleInItsOrder) {
-  using runout::filters::classify_mechanism;
-  using E = runout::filters::MechanismEvidence;
-  EXPECT_EQ(classify_mechanism(E{1.0, 1.0, 0.5, 0, 0}), Mechanism::BlockSliding);
-  EXPECT_EQ(classify_mechanism(E{1.14, 0.81, 0.1, 0, 0}), Mechanism::BlockSliding);
-  EXPECT_EQ(classify_mechanism(E{1.15, 0.9, 0.5, 0, 0}), Mechanism::Elongation);
-  EXPECT_EQ(classify_mechanism(E{1.5, 0.6, 0.5, 0, 0}), Mechanism::Elongation);
-  EXPECT_EQ(classify_mechanism(E{1.5, 0.9, 0.5, 1, 0}), Mechanism::Spreading);
-  EXPECT_EQ(classify_mechanism(E{1.0, 1.0, 0.5, 2, 0}), Mechanism::Spreading);
-  // Troughs the slide had from the start are not grabens that formed.
-  EXPECT_EQ(classify_mechanism(E{1.0, 1.0, 0.5, 1, 1}), Mechanism::BlockSliding);
-  // Not moved yet; thinned in place; no data.
-  EXPECT_EQ(classify_mechanism(E{1.0, 1.0, 0.05, 0, 0}), Mechanism::Undetermined);
-  EXPECT_EQ(classify_mechanism(E{1.1, 0.7, 0.5, 0, 0}), Mechanism::Undetermined);
-  EXPECT_EQ(classify_mechanism(E{NAN, 1.0, 0.5, 0, 0}), Mechanism::Undetermined);
-  EXPECT_STREQ(runout::filters::mechanism_name(Mechanism::BlockSliding), "block sliding");
-  EXPECT_STREQ(runout::filters::mechanism_name(Mechanism::Undetermined), "undetermined");
-}
 
 // ---- vtkRunoutMorphology on one frame ---------------------------------
 

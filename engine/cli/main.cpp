@@ -21,6 +21,7 @@
 #include <iostream>
 #include <optional>
 
+#include "analyse_command.hpp"
 #include "budget_check.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
@@ -399,6 +400,9 @@ int main(int argc, char** argv) {
   CLI::App* verify_cmd = app.add_subcommand(
       "verify", "Check every frame an output folder's index lists against its manifest");
   verify_cmd->add_option("out_dir", verify_dir, "Output folder of a run")->required();
+  AnalyseArgs analyse_args;
+  CLI::App* analyse_cmd = nullptr;
+  add_analyse_command(app, analyse_args, analyse_cmd);
   app.add_subcommand("info", "Version, threads and CUDA devices");
 
   try {
@@ -420,6 +424,7 @@ int main(int argc, char** argv) {
     if (*check_cmd) return check(load(check_args), source_of(check_args), check_limits);
     if (*study_cmd) return run_study(study_args);
     if (*verify_cmd) return verify(verify_dir);
+    if (*analyse_cmd) return run_analyse(analyse_args);
     return info();
   } catch (const SceneFileError& e) {
     std::cerr << "runout: " << e.what() << "\n";

@@ -1,10 +1,13 @@
 #include <zlib.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -55,15 +58,17 @@ struct FrameSum {
   std::uint64_t size = 0;
   std::string crc;
 };
+FrameSum sum_of(const std::string& bytes) {
+  char crc[16];
+  std::snprintf(crc, sizeof crc, "%08lx", crc_of(bytes));
+  return {bytes.size(), crc};
+}
 // A file that cannot be read (an index given a frame that is not there)
 // is recorded as such, for verify to report, rather than failing the run.
 FrameSum frame_sum(const std::string& folder, const std::string& file) {
   std::ifstream in(in_folder(folder, file), std::ios::binary);
   if (!in) return {0, "unreadable"};
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  char crc[16];
-  std::snprintf(crc, sizeof crc, "%08lx", crc_of(bytes));
-  return {bytes.size(), crc};
+  return sum_of(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
 }
 
 // "file size crc32".
@@ -72,15 +77,14 @@ std::string manifest_line(const std::string& folder, const std::string& file) {
   return file + " " + std::to_string(sum.size) + " " + sum.crc;
 }
 
-// The .pvd's file="..." entries, in order.
-std::vector<std::string> listed_files(const std::string& pvd_text) {
-  std::vector<std::string> files;
-  const std::string key = "file=\"";
-  for (auto at = pvd_text.find(key); at != std::string::npos; at = pvd_text.find(key, at)) {
-    at += key.size();
-    files.push_back(pvd_text.substr(at, pvd_text.find('"', at) - at));
-  }
-  return files;
+// The value of attribute `key` in the element text `tag`, if it has one.
+std::optional<std::string> attribute_of(const std::string& tag, const std::string& key) {
+  const std::string start = " " + key + "=\"";
+  const auto at = tag.find(start);
+  if (at == std::string::npos) return std::nullopt;
+  const auto begin = at + start.size(), end = tag.find('"', begin);
+  if (end == std::string::npos) return std::nullopt;
+  return tag.substr(begin, end - begin);
 }
 
 }  // namespace
@@ -97,31 +101,55 @@ void PvdIndex::add(double time, const std::string& relative_file) {
   write();
 }
 
-std::vector<std::string> verify_frames(const std::string& pvd_path) {
-  const std::string folder = folder_of(pvd_path);
-  std::map<std::string, FrameSum> recorded;
+PvdIndex::Entries read_pvd_entries(const std::string& pvd_path) {
+  const std::string text = read_whole(pvd_path);
+  PvdIndex::Entries entries;
+  for (auto at = text.find("<DataSet"); at != std::string::npos; at = text.find("<DataSet", at)) {
+    const auto end = text.find('>', at);
+    const std::string tag = text.substr(at, end == std::string::npos ? end : end - at);
+    at += tag.size();
+    const std::optional<std::string> file = attribute_of(tag, "file");
+    if (!file) continue;
+    const std::optional<std::string> time = attribute_of(tag, "timestep");
+    char* parsed_to = nullptr;
+    const double t = time ? std::strtod(time->c_str(), &parsed_to) : 0.0;
+    const bool whole = time && !time->empty() && *parsed_to == '\0';
+    entries.emplace_back(whole ? t : std::nan(""), *file);
+  }
+  return entries;
+}
+
+FrameManifest::FrameManifest(const std::string& pvd_path) : folder_(folder_of(pvd_path)) {
   std::istringstream manifest(read_whole(manifest_path(pvd_path)));
   std::string file;
-  FrameSum sum;
-  while (manifest >> file >> sum.size >> sum.crc) recorded[file] = sum;
+  Sum sum;
+  while (manifest >> file >> sum.size >> sum.crc) recorded_[file] = sum;
+}
+
+std::string FrameManifest::problem(const std::string& file, const std::string& bytes) const {
+  const auto it = recorded_.find(file);
+  if (it == recorded_.end()) return "not in the manifest";
+  const FrameSum now = sum_of(bytes);
+  if (now.size != it->second.size)
+    return std::to_string(now.size) + " bytes, the manifest says " +
+           std::to_string(it->second.size);
+  if (now.crc != it->second.crc) return "CRC-32 " + now.crc + ", the manifest says " + it->second.crc;
+  return "";
+}
+
+std::string FrameManifest::problem(const std::string& file) const {
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(in_folder(folder_, file), ignored)) return "missing";
+  if (!recorded_.count(file)) return "not in the manifest";
+  return problem(file, read_whole(in_folder(folder_, file)));
+}
+
+std::vector<std::string> verify_frames(const std::string& pvd_path) {
+  const FrameManifest manifest(pvd_path);
   std::vector<std::string> bad;
-  for (const std::string& listed : listed_files(read_whole(pvd_path))) {
-    const auto it = recorded.find(listed);
-    std::error_code ignored;
-    if (!std::filesystem::is_regular_file(in_folder(folder, listed), ignored)) {
-      bad.push_back(listed + ": missing");
-      continue;
-    }
-    if (it == recorded.end()) {
-      bad.push_back(listed + ": not in the manifest");
-      continue;
-    }
-    const FrameSum now = frame_sum(folder, listed);
-    if (now.size != it->second.size)
-      bad.push_back(listed + ": " + std::to_string(now.size) + " bytes, the manifest says " +
-                    std::to_string(it->second.size));
-    else if (now.crc != it->second.crc)
-      bad.push_back(listed + ": CRC-32 " + now.crc + ", the manifest says " + it->second.crc);
+  for (const auto& entry : read_pvd_entries(pvd_path)) {
+    const std::string problem = manifest.problem(entry.second);
+    if (!problem.empty()) bad.push_back(entry.second + ": " + problem);
   }
   return bad;
 }

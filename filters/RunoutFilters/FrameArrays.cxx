@@ -1,5 +1,8 @@
 #include "FrameArrays.h"
 
+#include "runout/analysis/frame_base.hpp"
+#include "runout/analysis/tuples.hpp"
+
 #include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -21,57 +24,33 @@
 
 namespace runout::filters {
 
+std::vector<double> coordinates_of(vtkPointSet* frame) {
+  std::vector<double> xyz(3 * static_cast<size_t>(frame->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i) frame->GetPoint(i, &xyz[3 * i]);
+  return xyz;
+}
+
 std::vector<Vec2> positions_of(vtkPointSet* frame) {
-  std::vector<Vec2> points(frame->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i) {
-    double p[3];
-    frame->GetPoint(i, p);
-    points[i] = {p[0], p[1]};
-  }
-  return points;
+  return analysis::points_of(coordinates_of(frame));
+}
+
+std::vector<double> values_of(vtkDataArray* array) {
+  const int components = array->GetNumberOfComponents();
+  std::vector<double> values(static_cast<size_t>(array->GetNumberOfTuples()) * components);
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < components; ++c) values[i * components + c] = array->GetComponent(i, c);
+  return values;
 }
 
 std::string points_problem(vtkPointSet* frame) {
-  for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i) {
-    double p[3];
-    frame->GetPoint(i, p);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      return "Point " + std::to_string(i) + " has a coordinate that is not a finite number.";
-  }
-  return "";
+  return analysis::points_problem(coordinates_of(frame));
 }
 
 std::string point_array_problem(vtkPointSet* frame, vtkDataArray* array, const char* name,
                                 int components, double limit) {
-  const std::string quoted = std::string("The point array \"") + name + "\"";
-  if (array->GetNumberOfTuples() != frame->GetNumberOfPoints())
-    return quoted + " has " + std::to_string(array->GetNumberOfTuples()) + " tuples for " +
-           std::to_string(frame->GetNumberOfPoints()) + " points.";
-  if (array->GetNumberOfComponents() < components)
-    return quoted + " has " + std::to_string(array->GetNumberOfComponents()) +
-           " component(s), fewer than " + std::to_string(components) + ".";
-  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
-    for (int c = 0; c < array->GetNumberOfComponents(); ++c) {
-      const double v = array->GetComponent(i, c);
-      if (!(std::abs(v) <= limit))
-        return quoted + " has a value that is not a finite number" +
-               (limit < 1.7976931348623157e308 ? " within +-" + std::to_string(limit) : "") +
-               " at point " + std::to_string(i) + ".";
-    }
-  return "";
-}
-
-std::string extent_problem(const std::vector<Vec2>& points, double spacing) {
-  if (points.empty()) return "";
-  Vec2 lo = points[0], hi = points[0];
-  for (const Vec2& p : points) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  const double reach = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(hi.x), std::abs(hi.y)});
-  if (reach / spacing < 1073741824.0) return "";
-  return "The points reach " + std::to_string(reach) + " from the origin, more than 2^30 " +
-         "particle spacings of " + std::to_string(spacing) + ": not a Runout particle frame.";
+  return analysis::point_array_problem(name, values_of(array), array->GetNumberOfComponents(),
+                                       static_cast<size_t>(frame->GetNumberOfPoints()),
+                                       components, limit);
 }
 
 std::vector<double> component_of(vtkDataArray* array, int component) {
@@ -82,14 +61,7 @@ std::vector<double> component_of(vtkDataArray* array, int component) {
 }
 
 std::vector<double> magnitude_of(vtkDataArray* array) {
-  std::vector<double> values(array->GetNumberOfTuples());
-  const int components = array->GetNumberOfComponents();
-  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i) {
-    double sum = 0;
-    for (int c = 0; c < components; ++c) sum += array->GetComponent(i, c) * array->GetComponent(i, c);
-    values[i] = std::sqrt(sum);
-  }
-  return values;
+  return analysis::norms_of(values_of(array), array->GetNumberOfComponents());
 }
 
 std::vector<std::int64_t> ids_of(vtkDataArray* array) {
@@ -108,27 +80,13 @@ double particle_spacing_of(vtkDataObject* frame) {
 
 std::optional<runout::Base> read_base_points(vtkDataObject* frame) {
   vtkDataArray* points = frame->GetFieldData()->GetArray("base_points");
-  if (!points || points->GetNumberOfComponents() < 2 || points->GetNumberOfTuples() < 2)
-    return std::nullopt;
-  runout::BaseSpec spec;
-  spec.kind = runout::BaseKind::Polyline;
-  for (vtkIdType k = 0; k < points->GetNumberOfTuples(); ++k) {
-    const Eigen::Vector2d p(points->GetComponent(k, 0), points->GetComponent(k, 1));
-    if (!p.allFinite()) return std::nullopt;
-    // A repeated point would make a segment without a direction.
-    if (!spec.points.empty() && !(p.x() > spec.points.back().x())) return std::nullopt;
-    spec.points.push_back(p);
-  }
-  if (spec.points.size() == 2 && spec.points[0].y() == spec.points[1].y())
-    spec.kind = runout::BaseKind::Planar;
-  return runout::Base(spec, spec.points[0].y());
+  if (!points) return std::nullopt;
+  return analysis::base_from_points(values_of(points), points->GetNumberOfComponents());
 }
 
 runout::Base base_of(vtkDataObject* frame) {
   if (std::optional<runout::Base> base = read_base_points(frame)) return *base;
-  runout::BaseSpec x_axis;
-  x_axis.kind = runout::BaseKind::Planar;
-  return runout::Base(x_axis, 0.0);
+  return analysis::x_axis_base();
 }
 
 double frame_time_of(vtkDataObject* frame) {

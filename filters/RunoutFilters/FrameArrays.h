@@ -1,12 +1,12 @@
 #pragma once
 // What a Runout particle frame carries (docs/output.md), read into the plain
-// arrays that the filters' algorithms take, and their results back into VTK
-// arrays. Shared by the VTK classes of the module; not wrapped.
+// arrays that the analysis' algorithms take (runout_analysis), and their
+// results back into VTK arrays. Shared by the VTK classes of the module; not
+// wrapped. The checks and the base are the analysis' own (frame_checks.hpp,
+// frame_base.hpp), so a frame is read as `runout analyse` reads it.
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "vtkDoubleArray.h"
@@ -14,9 +14,11 @@
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
+#include "runout/analysis/frame_checks.hpp"
+#include "runout/analysis/result_columns.hpp"
+#include "runout/analysis/shear_bands.hpp"
+#include "runout/analysis/vec2.hpp"
 #include "runout/base.hpp"
-
-#include "Vec2.h"
 
 class vtkAbstractArray;
 class vtkAlgorithm;
@@ -29,24 +31,36 @@ class vtkTable;
 
 namespace runout::filters {
 
+using analysis::Vec2;
+
+// A frame as the band search read it, with its bands: what
+// vtkRunoutHorstGraben builds its blocks from.
+struct BandFrame {
+  std::vector<Vec2> points;
+  std::vector<double> xi;
+  runout::Base base{runout::BaseSpec{}, 0.0};  // the x axis until read
+  double spacing = 0;
+  std::vector<analysis::ShearBand> bands;
+};
+
+// The points' (x, y, z), interleaved.
+std::vector<double> coordinates_of(vtkPointSet* frame);
+
 // The points' (x, y): a run is two-dimensional, z is 0.
 std::vector<Vec2> positions_of(vtkPointSet* frame);
 
-// What makes the frame's points unusable, or "": a coordinate that is not
-// finite (a NaN or infinity in a position would become an index or a bin).
+// analysis::points_problem of the frame's points.
 std::string points_problem(vtkPointSet* frame);
 
-// What makes `array` unusable as the point array `name` of `frame` read
-// with `components` components, or "": a tuple count other than the
-// frame's point count, fewer components, or a value that is not finite or
-// exceeds `limit` in magnitude (particle ids must fit 64-bit integers).
+// analysis::point_array_problem of `array` as the point array `name` of
+// `frame` read with `components` components (particle ids within
+// analysis::kParticleIdLimit).
 std::string point_array_problem(vtkPointSet* frame, vtkDataArray* array, const char* name,
-                                int components, double limit = 1.7976931348623157e308);
+                                int components, double limit = analysis::kAnyFinite);
 
-// What makes the points too far apart for neighbour searches at `spacing`,
-// or "": a bounding box wider than 2^30 spacings, whose cell indices would
-// not fit the 32 bits of PointGrid's keys (any real slide is far smaller).
-std::string extent_problem(const std::vector<Vec2>& points, double spacing);
+// Every component of every tuple, interleaved as VTK stores them (the
+// layout of analysis/tuples.hpp).
+std::vector<double> values_of(vtkDataArray* array);
 
 // Component `component` of every tuple.
 std::vector<double> component_of(vtkDataArray* array, int component = 0);
@@ -61,14 +75,11 @@ std::vector<std::int64_t> ids_of(vtkDataArray* array);
 // finite number.
 double particle_spacing_of(vtkDataObject* frame);
 
-// The base from the `base_points` field data, as the engine wrote it: two
-// points at one height are its planar base (s = x, as the engine measures
-// it), more points its polyline. nullopt without base_points, with fewer
-// than two points, with x not strictly increasing or with a coordinate
-// that is not finite.
+// The base from the `base_points` field data (analysis::base_from_points);
+// nullopt without it or when it is unusable.
 std::optional<runout::Base> read_base_points(vtkDataObject* frame);
 
-// read_base_points, or the x axis (s = x, d = y) when it gives none.
+// read_base_points, or the x axis (analysis::x_axis_base) when it gives none.
 runout::Base base_of(vtkDataObject* frame);
 
 // The time of the frame: its data time step, else its TimeValue field data,
@@ -95,28 +106,13 @@ void write_cells_and_table(vtkInformationVector* outputVector,
                            const std::vector<const std::vector<Vec2>*>& outlines, bool polygons,
                            const std::vector<vtkSmartPointer<vtkAbstractArray>>& columns);
 
-// A column of the band and block outputs: its name, its array type, and
-// how it reads an item (number for Double and Int, text for String).
-template <class Item>
-struct ItemColumn {
-  enum Kind { Double, Int, String };
-  ItemColumn(const char* name, Kind kind, std::function<double(const Item&)> number)
-      : name(name), kind(kind), number(std::move(number)) {}
-  ItemColumn(const char* name, std::function<std::string(const Item&)> text)
-      : name(name), kind(String), text(std::move(text)) {}
-  const char* name;
-  Kind kind;
-  std::function<double(const Item&)> number;
-  std::function<std::string(const Item&)> text;
-};
-
 // write_cells_and_table with one cell and row per item: the cell through
 // the item's `outline` points, then the column `id_name` (the item's
-// index, an int) and `columns`.
+// index, an int) and `columns` (result_columns.hpp).
 template <class Item>
 void write_items(vtkInformationVector* outputVector, const std::vector<Item>& items,
                  std::vector<Vec2> Item::*outline, bool polygons, const char* id_name,
-                 const std::vector<ItemColumn<Item>>& columns) {
+                 const std::vector<analysis::Column<Item>>& columns) {
   const size_t n = items.size();
   std::vector<const std::vector<Vec2>*> outlines(n);
   std::vector<int> id(n);
@@ -125,8 +121,8 @@ void write_items(vtkInformationVector* outputVector, const std::vector<Item>& it
     id[b] = static_cast<int>(b);
   }
   std::vector<vtkSmartPointer<vtkAbstractArray>> arrays{make_int_array(id_name, id)};
-  for (const ItemColumn<Item>& column : columns) {
-    if (column.kind == ItemColumn<Item>::String) {
+  for (const analysis::Column<Item>& column : columns) {
+    if (column.kind == analysis::Column<Item>::String) {
       auto text = vtkSmartPointer<vtkStringArray>::New();
       text->SetName(column.name);
       text->SetNumberOfValues(static_cast<vtkIdType>(n));
@@ -136,7 +132,7 @@ void write_items(vtkInformationVector* outputVector, const std::vector<Item>& it
     }
     std::vector<double> values(n);
     for (size_t b = 0; b < n; ++b) values[b] = column.number(items[b]);
-    if (column.kind == ItemColumn<Item>::Int)
+    if (column.kind == analysis::Column<Item>::Int)
       arrays.push_back(make_int_array(column.name, std::vector<int>(values.begin(), values.end())));
     else
       arrays.push_back(make_double_array(column.name, values));

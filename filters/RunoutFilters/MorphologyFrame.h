@@ -1,11 +1,12 @@
 #pragma once
 // A Runout particle frame (docs/output.md) read into the engine's types for
-// MorphologyRules, and the morphology table that vtkRunoutMorphology (one
-// row) and vtkRunoutMorphologyHistory (one row per time step) output, so
-// that both give the same columns. Not wrapped.
+// the analysis' morphology (morphology_rules.hpp), and the morphology table
+// that vtkRunoutMorphology (one row) and vtkRunoutMorphologyHistory (one row
+// per time step) output, with the columns of result_columns.hpp, as `runout
+// analyse` writes them. Not wrapped.
 #include <string>
 
-#include "MorphologyRules.h"
+#include "runout/analysis/morphology_rules.hpp"
 
 class vtkAlgorithm;
 class vtkPointSet;
@@ -33,8 +34,10 @@ void select_morphology_arrays(vtkAlgorithm* algorithm);
 // bin_spacings particle spacings. Reads the points, the point arrays
 // `arrays` names, and the field data base_points (read_base_points) and
 // particle_spacing. Returns "", else what is missing or wrong, naming the
-// array. No points: all zero, undetermined, and no array is needed.
-std::string measure_point_set(vtkPointSet* frame, double bin_spacings, FrameMorphology& out,
+// array (analysis::morphology_problem). No points: all zero, undetermined,
+// and no array is needed.
+std::string measure_point_set(vtkPointSet* frame, double bin_spacings,
+                              analysis::FrameMorphology& out,
                               const MorphologyArrays& arrays = MorphologyArrays());
 
 // Adds the (empty) columns of the morphology table.
@@ -42,6 +45,6 @@ void add_morphology_columns(vtkTable* table);
 
 // Appends the row of one frame at `time`; a frame without particles gets
 // NaN lengths and velocities.
-void append_morphology_row(vtkTable* table, double time, const FrameMorphology& m);
+void append_morphology_row(vtkTable* table, double time, const analysis::FrameMorphology& m);
 
 }  // namespace runout::filters

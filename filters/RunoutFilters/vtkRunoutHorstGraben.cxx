@@ -8,11 +8,12 @@
 #include "vtkPointSet.h"
 
 #include "FrameArrays.h"
-#include "HorstGraben.h"
-#include "ShearBands.h"
+#include "runout/analysis/horst_graben.hpp"
+#include "runout/analysis/result_columns.hpp"
 
 #include <string>
 
+using namespace runout::analysis;
 using namespace runout::filters;
 
 vtkStandardNewMacro(vtkRunoutHorstGraben);
@@ -58,23 +59,8 @@ int vtkRunoutHorstGraben::RequestData(
   const std::vector<SlideBlock> blocks = find_blocks(
     frame.points, magnitude_of(displacementArray), frame.bands, frame.base.view(), parameters);
 
-  using C = ItemColumn<SlideBlock>;
-  write_items<SlideBlock>(outputVector, blocks, &SlideBlock::outline, true, "block_id",
-    {
-      { "type", [](const SlideBlock& b) { return std::string(block_type_name(b.type)); } },
-      { "type_code", C::Int, [](const SlideBlock& b) { return static_cast<double>(b.type); } },
-      { "start_s", C::Double, [](const SlideBlock& b) { return b.start_s; } },
-      { "end_s", C::Double, [](const SlideBlock& b) { return b.end_s; } },
-      { "width", C::Double, [](const SlideBlock& b) { return b.width; } },
-      { "top", C::Double, [](const SlideBlock& b) { return b.top; } },
-      { "relief", C::Double, [](const SlideBlock& b) { return b.relief; } },
-      { "left_dip", C::Double, [](const SlideBlock& b) { return b.left_dip; } },
-      { "right_dip", C::Double, [](const SlideBlock& b) { return b.right_dip; } },
-      { "left_band", C::Int, [](const SlideBlock& b) { return double(b.left_band); } },
-      { "right_band", C::Int, [](const SlideBlock& b) { return double(b.right_band); } },
-      { "displacement", C::Double, [](const SlideBlock& b) { return b.displacement; } },
-      { "particle_count", C::Int, [](const SlideBlock& b) { return double(b.particles); } },
-    });
+  write_items<SlideBlock>(
+    outputVector, blocks, &SlideBlock::outline, true, kBlockIdColumn, block_columns());
   return 1;
 }
 

@@ -69,7 +69,7 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  // Defaults: those of runout::filters::BlockParameters (HorstGraben.h).
+  // Defaults: those of runout::analysis::BlockParameters (horst_graben.hpp).
   double DipTolerance;
   double SurfaceGap;
 

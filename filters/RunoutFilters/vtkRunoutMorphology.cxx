@@ -57,6 +57,7 @@ void FillProfile(const runout::Profile& profile, vtkPolyData* output)
 
 //------------------------------------------------------------------------------
 vtkRunoutMorphology::vtkRunoutMorphology()
+  : BinSpacings(runout::analysis::kProfileBinSpacings)
 {
   this->SetNumberOfOutputPorts(2);
   runout::filters::select_morphology_arrays(this);
@@ -94,7 +95,7 @@ int vtkRunoutMorphology::RequestData(
   vtkPolyData* profile = vtkPolyData::GetData(outputVector, 0);
   vtkTable* table = vtkTable::GetData(outputVector, 1);
 
-  runout::filters::FrameMorphology morphology;
+  runout::analysis::FrameMorphology morphology;
   const std::string error =
     runout::filters::measure_point_set(input, this->BinSpacings, morphology,
       runout::filters::selected_morphology_arrays(this));

@@ -51,8 +51,10 @@ public:
   ///@{
   /**
    * Width of the profile's bins along the base, in particle spacings (the
-   * frame's `particle_spacing`). Default 2: narrower bins show the gaps
-   * between particle columns as dips of the profile.
+   * frame's `particle_spacing`). Default 2 (runout::analysis::
+   * kProfileBinSpacings, as `runout analyse`): narrower bins show the gaps
+   * between particle columns as dips of the profile. The range is
+   * kMinProfileBinSpacings to kMaxProfileBinSpacings.
    */
   vtkSetClampMacro(BinSpacings, double, 0.25, 1000.0);
   vtkGetMacro(BinSpacings, double);
@@ -72,7 +74,7 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  double BinSpacings = 2.0;
+  double BinSpacings;
 
 private:
   vtkRunoutMorphology(const vtkRunoutMorphology&) = delete;

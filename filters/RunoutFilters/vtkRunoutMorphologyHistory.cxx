@@ -102,7 +102,7 @@ int vtkRunoutMorphologyHistory::RequestData(
   }
 
   // The history has no profile to show: any bin width does.
-  runout::filters::FrameMorphology morphology;
+  runout::analysis::FrameMorphology morphology;
   // The engine never writes a frame without particles: in a series, one is
   // a frame that could not be read (a file the index lists is missing or
   // unreadable). It is skipped, so one lost frame costs one row.

@@ -12,7 +12,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "FrameArrays.h"
-#include "StrainAlgorithms.h"
+#include "runout/analysis/plastic_strain.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +20,7 @@
 #include <string>
 #include <utility>
 
+using namespace runout::analysis;
 using namespace runout::filters;
 
 vtkStandardNewMacro(vtkRunoutPlasticStrain);

@@ -7,11 +7,13 @@
 #include "vtkPointSet.h"
 
 #include "FrameArrays.h"
-#include "ShearBands.h"
+#include "runout/analysis/result_columns.hpp"
+#include "runout/analysis/shear_bands.hpp"
 
 #include <cmath>
 #include <string>
 
+using namespace runout::analysis;
 using namespace runout::filters;
 
 vtkStandardNewMacro(vtkRunoutShearBands);
@@ -77,7 +79,7 @@ bool vtkRunoutShearBands::FindBands(vtkInformationVector** inputVector, BandFram
   }
   if (problem.empty())
   {
-    problem = extent_problem(positions_of(input), frame.spacing);
+    problem = runout::analysis::extent_problem(positions_of(input), frame.spacing);
   }
   if (!problem.empty())
   {
@@ -90,7 +92,7 @@ bool vtkRunoutShearBands::FindBands(vtkInformationVector** inputVector, BandFram
   }
 
   BandParameters parameters;
-  parameters.threshold.mode = static_cast<runout::filters::ThresholdMode>(this->ThresholdMode);
+  parameters.threshold.mode = static_cast<runout::analysis::ThresholdMode>(this->ThresholdMode);
   parameters.threshold.absolute = this->Threshold;
   parameters.threshold.relative = this->RelativeThreshold;
   parameters.threshold.reference = this->ReferenceStrain;
@@ -118,20 +120,8 @@ int vtkRunoutShearBands::RequestData(
     return 1;
   }
 
-  using C = ItemColumn<ShearBand>;
-  write_items<ShearBand>(outputVector, frame.bands, &ShearBand::skeleton, false, "band_id",
-    {
-      { "centroid_x", C::Double, [](const ShearBand& b) { return b.centroid.x; } },
-      { "centroid_y", C::Double, [](const ShearBand& b) { return b.centroid.y; } },
-      { "centroid_s", C::Double, [](const ShearBand& b) { return b.centroid_s; } },
-      { "dip", C::Double, [](const ShearBand& b) { return b.dip; } },
-      { "length", C::Double, [](const ShearBand& b) { return b.length; } },
-      { "thickness", C::Double, [](const ShearBand& b) { return b.thickness; } },
-      { "mean_strain", C::Double, [](const ShearBand& b) { return b.mean_strain; } },
-      { "peak_strain", C::Double, [](const ShearBand& b) { return b.peak_strain; } },
-      { "particle_count", C::Int,
-        [](const ShearBand& b) { return static_cast<double>(b.particles.size()); } },
-    });
+  write_items<ShearBand>(
+    outputVector, frame.bands, &ShearBand::skeleton, false, kBandIdColumn, band_columns());
   return 1;
 }
 

@@ -160,7 +160,7 @@ protected:
    */
   bool FindBands(vtkInformationVector** inputVector, runout::filters::BandFrame& frame);
 
-  // Defaults: those of runout::filters::BandParameters (ShearBands.h).
+  // Defaults: those of runout::analysis::BandParameters (shear_bands.hpp).
   int ThresholdMode;
   double Threshold;
   double RelativeThreshold;

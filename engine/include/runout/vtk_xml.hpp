@@ -3,11 +3,13 @@
 // particle .vtu, the depth-averaged .vtp): inline binary, base64 of a UInt64
 // header and the bytes, optionally zlib in VTK's block layout. Never
 // appended data, which Debian 12's expat breaks in VTK 9.2
-// (../shared/BUILD.md).
+// (../shared/BUILD.md). And its decoder, for the frame reader
+// (vtu_reader.hpp).
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace runout::vtk_xml {
@@ -23,6 +25,15 @@ template <> struct VtkType<std::uint8_t> { static constexpr const char* name = "
 
 // The text between <DataArray ...> and </DataArray> for `size` bytes.
 std::string encode(const void* data, std::size_t size, bool compress);
+
+// The `size` bytes of one array's text as encode() wrote it (whitespace
+// trimmed), compressed or not. Throws std::runtime_error saying what does
+// not add up: text that is not base64, a header whose byte count is not
+// `size`, zlib blocks that do not inflate to the sizes the header gives.
+// `size` comes from the array's attributes; one beyond what the text could
+// hold (zlib inflates at most 1032-fold) is refused before anything is
+// allocated, so a spoilt count cannot take more memory than the file does.
+std::string decode(std::string_view text, std::size_t size, bool compressed);
 
 // `<VTKFile type="..." ...>` with the attributes every frame uses.
 std::string file_header(const char* type, bool compress);

@@ -4,6 +4,8 @@
 // never appended data, which Debian 12's expat breaks in VTK 9.2
 // (../shared/BUILD.md). Every file is written to a temporary name and
 // renamed, so a killed run never leaves a half-written file.
+#include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +53,31 @@ class PvdIndex {
 };
 
 inline std::string manifest_path(const std::string& pvd_path) { return pvd_path + ".manifest"; }
+
+// The (time, file) entries of the .pvd at pvd_path, in order; a time that
+// does not parse is NaN. Throws std::runtime_error when it cannot be read.
+PvdIndex::Entries read_pvd_entries(const std::string& pvd_path);
+
+// The manifest beside an index, to check the frames it lists one by one.
+class FrameManifest {
+ public:
+  // Throws std::runtime_error when the manifest cannot be read.
+  explicit FrameManifest(const std::string& pvd_path);
+  // What is wrong with the listed frame `file` whose bytes on disk are
+  // `bytes`: not listed in the manifest, its size, its checksum; "" when it
+  // matches.
+  std::string problem(const std::string& file, const std::string& bytes) const;
+  // The same for the file as it is on disk now ("missing" when it is not).
+  std::string problem(const std::string& file) const;
+
+ private:
+  struct Sum {
+    std::uint64_t size = 0;
+    std::string crc;
+  };
+  std::string folder_;
+  std::map<std::string, Sum> recorded_;
+};
 
 // The frames of the .pvd at pvd_path that do not match its manifest, each
 // "file: why" (missing, not listed in the manifest, size, checksum); empty

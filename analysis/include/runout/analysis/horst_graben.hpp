@@ -1,15 +1,15 @@
 #pragma once
-// Horsts and grabens: the blocks of a frame between its shear bands, the
-// algorithm of vtkRunoutHorstGraben on plain arrays. docs/filters.md,
-// "Horsts and grabens", states the definitions.
+// Horsts and grabens: the blocks of a frame between its shear bands, on
+// plain arrays: the algorithm behind vtkRunoutHorstGraben and `runout
+// analyse`. docs/filters.md, "Horsts and grabens", states the definitions.
 #include <vector>
 
 #include "runout/base.hpp"
 
-#include "ShearBands.h"
-#include "Vec2.h"
+#include "runout/analysis/shear_bands.hpp"
+#include "runout/analysis/vec2.hpp"
 
-namespace runout::filters {
+namespace runout::analysis {
 
 enum class BlockType { Block = 0, Horst = 1, Graben = 2 };
 
@@ -50,4 +50,4 @@ std::vector<SlideBlock> find_blocks(const std::vector<Vec2>& points,
                                     const runout::BaseView& base,
                                     const BlockParameters& parameters);
 
-}  // namespace runout::filters
+}  // namespace runout::analysis

@@ -1,10 +1,12 @@
-#include "MorphologyRules.h"
+#include "runout/analysis/morphology_rules.hpp"
+
+#include "runout/analysis/tuples.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace runout::filters {
+namespace runout::analysis {
 
 namespace {
 
@@ -96,6 +98,21 @@ Mechanism classify_mechanism(const MechanismEvidence& e) {
   return Mechanism::Undetermined;
 }
 
+runout::Particles morphology_particles(const std::vector<double>& xyz,
+                                       const std::vector<double>& velocity, int velocity_components,
+                                       const std::vector<double>& mass, int mass_components,
+                                       const std::vector<double>& initial, int initial_components) {
+  runout::Particles p;
+  p.x = component_of(xyz, 3, 0);
+  p.y = component_of(xyz, 3, 1);
+  p.vx = component_of(velocity, velocity_components, 0);
+  p.vy = component_of(velocity, velocity_components, 1);
+  p.mass = component_of(mass, mass_components, 0);
+  p.x0 = component_of(initial, initial_components, 0);
+  p.y0 = component_of(initial, initial_components, 1);
+  return p;
+}
+
 FrameMorphology measure_frame(const runout::Particles& particles, const runout::BaseView& base,
                               double spacing, double bin_width) {
   FrameMorphology m;
@@ -118,4 +135,4 @@ FrameMorphology measure_frame(const runout::Particles& particles, const runout::
   return m;
 }
 
-}  // namespace runout::filters
+}  // namespace runout::analysis

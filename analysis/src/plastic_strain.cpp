@@ -1,9 +1,9 @@
-#include "StrainAlgorithms.h"
+#include "runout/analysis/plastic_strain.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace runout::filters {
+namespace runout::analysis {
 
 StrainById strain_by_id(const std::vector<std::int64_t>& ids, const std::vector<double>& xi) {
   StrainById by_id;
@@ -76,4 +76,4 @@ GridProjection project_to_grid(const std::vector<Vec2>& points,
   return out;
 }
 
-}  // namespace runout::filters
+}  // namespace runout::analysis

@@ -1,14 +1,15 @@
 #pragma once
-// Shear bands of one particle frame: the algorithms of vtkRunoutShearBands
-// (and of vtkRunoutHorstGraben, which bounds its blocks by these bands) on
-// plain arrays. docs/filters.md, "Shear bands", states the definitions.
+// Shear bands of one particle frame, on plain arrays: the algorithms behind
+// vtkRunoutShearBands, vtkRunoutHorstGraben (which bounds its blocks by
+// these bands) and `runout analyse`. docs/filters.md, "Shear bands", states
+// the definitions.
 #include <vector>
 
 #include "runout/base.hpp"
 
-#include "Vec2.h"
+#include "runout/analysis/vec2.hpp"
 
-namespace runout::filters {
+namespace runout::analysis {
 
 enum class ThresholdMode { Absolute = 0, RelativeToReference = 1, Percentile = 2 };
 
@@ -65,14 +66,4 @@ std::vector<ShearBand> find_shear_bands(const std::vector<Vec2>& points,
                                         const runout::BaseView& base,
                                         const BandParameters& parameters);
 
-// A frame as the band search read it, with its bands: what
-// vtkRunoutHorstGraben builds its blocks from.
-struct BandFrame {
-  std::vector<Vec2> points;
-  std::vector<double> xi;
-  runout::Base base{runout::BaseSpec{}, 0.0};  // the x axis until read
-  double spacing = 0;
-  std::vector<ShearBand> bands;
-};
-
-}  // namespace runout::filters
+}  // namespace runout::analysis

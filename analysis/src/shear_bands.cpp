@@ -1,11 +1,11 @@
-#include "ShearBands.h"
+#include "runout/analysis/shear_bands.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "PointGrid.h"
+#include "runout/analysis/point_grid.hpp"
 
-namespace runout::filters {
+namespace runout::analysis {
 
 namespace {
 
@@ -232,4 +232,4 @@ std::vector<ShearBand> find_shear_bands(const std::vector<Vec2>& points,
   return bands;
 }
 
-}  // namespace runout::filters
+}  // namespace runout::analysis

@@ -1,14 +1,14 @@
 #pragma once
-// Plastic shear strain per particle and on a regular grid: the algorithms
-// of vtkRunoutPlasticStrain on plain arrays (docs/filters.md, "Plastic
+// Plastic shear strain per particle and on a regular grid, on plain arrays:
+// the algorithms behind vtkRunoutPlasticStrain (docs/filters.md, "Plastic
 // strain"). xi is the particles' cumulative plastic shear strain.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
 
-#include "Vec2.h"
+#include "runout/analysis/vec2.hpp"
 
-namespace runout::filters {
+namespace runout::analysis {
 
 // xi of one frame by particle id.
 using StrainById = std::unordered_map<std::int64_t, double>;
@@ -50,4 +50,4 @@ GridProjection project_to_grid(const std::vector<Vec2>& points,
                                const std::vector<const std::vector<double>*>& fields,
                                const GridSpec& grid, double radius);
 
-}  // namespace runout::filters
+}  // namespace runout::analysis

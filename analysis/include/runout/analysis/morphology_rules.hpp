@@ -1,23 +1,31 @@
 #pragma once
-// The slide's morphology on one frame and its mechanism class: the
-// algorithms of vtkRunoutMorphology and vtkRunoutMorphologyHistory on the
-// engine's own types (docs/filters.md, "Runout morphology"). The toe, rear,
-// thickness and profile are the engine's measure_slide and slide_profile
-// (docs/morphology.md), so the filters give the numbers of the run's
-// history.csv; this file adds the comparison with the initial configuration
-// and the mechanism rule.
+// The slide's morphology on one frame and its mechanism class, on the
+// engine's own types: the algorithms behind vtkRunoutMorphology,
+// vtkRunoutMorphologyHistory and `runout analyse` (docs/filters.md, "Runout
+// morphology"). The toe, rear, thickness and profile are the engine's
+// measure_slide and slide_profile (docs/morphology.md), so they are the
+// numbers of the run's history.csv; this file adds the comparison with the
+// initial configuration and the mechanism rule.
 #include <vector>
 
 #include "runout/base.hpp"
 #include "runout/morphology.hpp"
 #include "runout/particles.hpp"
 
-namespace runout::filters {
+namespace runout::analysis {
 
 enum class Mechanism { Undetermined = 0, BlockSliding = 1, Elongation = 2, Spreading = 3 };
 
 // "undetermined", "block sliding", "elongation", "spreading".
 const char* mechanism_name(Mechanism mechanism);
+
+// Width of a frame's profile bins along the base, in particle spacings: the
+// default of vtkRunoutMorphology's BinSpacings and of `runout analyse
+// --bin-spacings` (narrower bins show the gaps between particle columns as
+// dips of the profile), and the range both accept.
+constexpr double kProfileBinSpacings = 2.0;
+constexpr double kMinProfileBinSpacings = 0.25;
+constexpr double kMaxProfileBinSpacings = 1000.0;
 
 // Thresholds of the rule; docs/filters.md gives the reasons.
 constexpr double kElongationLengthRatio = 1.15;   // L / L0 from which the slide has lengthened
@@ -69,6 +77,14 @@ struct FrameMorphology {
   Mechanism mechanism = Mechanism::Undetermined;
 };
 
+// The particles measure_frame reads (x, y, vx, vy, mass, x0, y0) from a
+// frame's arrays as VTK stores them: its points (x, y, z per point), and its
+// velocity, mass and initial position with their components per tuple.
+runout::Particles morphology_particles(const std::vector<double>& xyz,
+                                       const std::vector<double>& velocity, int velocity_components,
+                                       const std::vector<double>& mass, int mass_components,
+                                       const std::vector<double>& initial, int initial_components);
+
 // The frame's morphology. particles: the frame, with x0 and y0 the initial
 // position of each particle (the t = 0 configuration, which the engine
 // writes in every frame); spacing: h / ppc (> 0); bin_width: the profile's
@@ -81,4 +97,4 @@ struct FrameMorphology {
 FrameMorphology measure_frame(const runout::Particles& particles, const runout::BaseView& base,
                               double spacing, double bin_width);
 
-}  // namespace runout::filters
+}  // namespace runout::analysis

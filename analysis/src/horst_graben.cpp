@@ -1,4 +1,4 @@
-#include "HorstGraben.h"
+#include "runout/analysis/horst_graben.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "runout/morphology.hpp"
 
-namespace runout::filters {
+namespace runout::analysis {
 
 namespace {
 
@@ -218,4 +218,4 @@ std::vector<SlideBlock> find_blocks(const std::vector<Vec2>& points,
   return blocks;
 }
 
-}  // namespace runout::filters
+}  // namespace runout::analysis

@@ -10,9 +10,9 @@
 #include <unordered_map>
 #include <vector>
 
-#include "Vec2.h"
+#include "runout/analysis/vec2.hpp"
 
-namespace runout::filters {
+namespace runout::analysis {
 
 class PointGrid {
  public:
@@ -60,4 +60,4 @@ class PointGrid {
   std::vector<int> next_;                       // point -> next point of its cell, -1 at the end
 };
 
-}  // namespace runout::filters
+}  // namespace runout::analysis
