@@ -26,6 +26,9 @@ if "RUNOUT_GUI_RECORD" not in globals():
 # The overlays the test looks for: (filter's XML name, port, part).
 OVERLAYS = (("RunoutShearBands", 0, "bands"), ("RunoutHorstGraben", 0, "blocks"),
             ("RunoutMorphology", 0, "profile"))
+# The Strain Grid's outline: drawn where the slide is highest at t = 0,
+# along the profile's top, so the test leaves those pixels out.
+GRID = (("RunoutPlasticStrain", 1, "grid"),)
 # What shows the particles: the reader, or Runout Plastic Strain's
 # Particles, which take its place.
 PARTICLES = (("PVDReader", 0), ("RunoutPlasticStrain", 0))
@@ -67,7 +70,7 @@ def _displays(view):
 
 def _representations():
     """Every representation the GUI made: source, port, view, visible,
-    representation type, chart series shown."""
+    representation type, colour array and range, chart series shown."""
     rows = []
     for view in simple.GetViews():
         for key, rep in _displays(view).items():
@@ -75,6 +78,12 @@ def _representations():
                    "visible": int(rep.Visibility)}
             if rep.GetProperty("Representation") is not None:
                 row["representation"] = rep.SMProxy.GetProperty("Representation").GetElement(0)
+            color = rep.GetProperty("ColorArrayName")
+            if color is not None and rep.ColorArrayName[1]:
+                # The array it is coloured by and its colour map's range.
+                row["color"] = rep.ColorArrayName[1]
+                points = rep.LookupTable.RGBPoints if rep.LookupTable else []
+                row["range"] = [points[0], points[-4]] if len(points) >= 4 else []
             if rep.GetProperty("SeriesVisibility") is not None:
                 # The names of the series shown.
                 row["series"] = [str(v) for v in rep.SeriesVisibility]
@@ -111,7 +120,7 @@ def _shots(view, tag, folder):
     shoot("gui")
     particles = [k for k in displays if k in PARTICLES and shown[k]]
     parts = {"particles": particles, "none": []}
-    for name, port, part in OVERLAYS:
+    for name, port, part in OVERLAYS + GRID:
         parts[part] = [(name, port)]
     for part, keys in parts.items():
         for key, display in displays.items():

@@ -12,6 +12,9 @@ It fails on any error or warning ParaView prints, and unless
 - the GUI made one render view and one line chart, no spreadsheet;
 - the particles stay shown, block outlines are Wireframe, the Strain Grid
   an Outline, the chart shows the history's lengths;
+- at t = 0, where the filters are applied, the screenshots show the
+  particles with the profile over them, there are no bands or blocks, and
+  nothing shown is coloured by a map of range zero;
 - at the last frame the screenshots show the particles and, over them, the
   shear bands, the block outlines and the profile: each drawn alone marks
   pixels, those pixels lie within the particles' picture, and in the
@@ -21,7 +24,9 @@ It fails on any error or warning ParaView prints, and unless
 
 Run by pvpython (for VTK's PNG reader and numpy):
   pvpython tests/gui_walkthrough.py SOURCE_DIR RUNOUT_CLI PLUGIN_DIR PARAVIEW [KEEP_DIR]
-KEEP_DIR keeps the screenshots (docs/paraview.md's pictures come from it).
+KEEP_DIR keeps the screenshots (docs/paraview.md's pictures come from it)
+and the record, record.json, which `gui_walkthrough.py --check RECORD`
+checks again.
 Exits 77 (skipped) without xvfb-run or the paraview binary.
 """
 import json
@@ -116,8 +121,10 @@ def check_step(step, failures):
     if still.mean() < 0.5:
         failures.append(f"{step['tag']}: only {still.mean():.0%} of the particles' pixels are "
                         "shown in the GUI's picture (covered?)")
+    # Where the grid's outline crosses an overlay, either may be on top.
+    grid = drawn("grid")
     for part in ("bands", "blocks", "profile"):
-        mask = drawn(part)
+        mask = drawn(part) & ~grid
         n = int(mask.sum())
         cells = step["counts"].get(part, [0, 0])[1]
         print(f", {part} {n} px ({cells} cells)", end="")
@@ -146,6 +153,24 @@ def check_step(step, failures):
             failures.append(f"{step['tag']}: {part}: {kept:.0%} of its pixels shown over the "
                             "particles in the GUI's picture (hidden behind them?)")
     print()
+
+
+def check_opening(applied, failures):
+    """Where ParaView opens the series (t = 0), as docs/paraview.md says:
+    the particles and the profile over them, no bands or blocks yet (no
+    plastic strain), and no display coloured by a map whose range is that
+    of a field still 0 everywhere (it would keep it when the time moves)."""
+    if applied["time"] != 0:
+        failures.append(f"the filters were applied at t = {applied['time']}, not 0")
+    for part in ("bands", "blocks"):
+        if applied["counts"].get(part, [0, 0])[1]:
+            failures.append(f"{part} at t = 0: docs/paraview.md says there are none")
+    for rep in applied["representations"]:
+        low, high = (rep.get("range") or [0, 1])[:2]
+        if rep["visible"] and rep.get("color") and not high - low > 1e-9 * max(1, abs(high)):
+            failures.append(f"{rep['source']} port {rep['port']} coloured by {rep['color']} "
+                            f"with the range {low:g} to {high:g} at t = 0")
+    check_step(applied, failures)
 
 
 def check_record(record, failures):
@@ -182,6 +207,7 @@ def check_record(record, failures):
     if shown != sorted(["toe (m)", "rear (m)", "runout (m)", "length (m)",
                         "max_thickness (m)"]):
         failures.append(f"the history chart shows {shown}")
+    check_opening(applied, failures)
     times = [steps[t]["time"] for t in ("opened", "last", "previous")]
     if not times[0] < times[2] < times[1]:
         failures.append(f"times at open, last, previous frame: {times}")
@@ -211,7 +237,8 @@ def main():
         folder = keep or os.path.join(work, "shots")
         os.makedirs(folder, exist_ok=True)
         config = os.path.join(work, "config.json")
-        result = os.path.join(work, "result.json")
+        # Kept with the screenshots, for --check.
+        result = os.path.join(folder, "record.json")
         with open(config, "w") as f:
             json.dump({"folder": folder, "result": result,
                        "states": os.path.join(source, "states")}, f)

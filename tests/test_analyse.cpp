@@ -216,6 +216,16 @@ TEST_F(Analyse, AgainAfterAFrameIsLostKeepsNothingOfIt) {
   EXPECT_EQ(read_table(dir / "analysis" / "morphology.csv").rows.size(), 3u);
 }
 
+TEST_F(Analyse, ANewRunIntoTheFolderRemovesTheOldAnalysis) {
+  const fs::path dir = copy_of_run();
+  ASSERT_EQ(analyse(dir).code, 0);
+  ASSERT_TRUE(fs::exists(dir / "analysis" / "morphology.csv"));
+  const Result again = run_cli("run " + (dir / "scene.resolved.toml").string() + " --end 1 --out " +
+                               dir.string() + " --quiet");
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_FALSE(fs::exists(dir / "analysis"));
+}
+
 TEST_F(Analyse, WithoutAManifestFramesAreReadUncheckedAndUnreadableOnesSkipped) {
   const fs::path dir = copy_of_run();
   fs::remove(dir / (std::string(kPvd) + ".manifest"));

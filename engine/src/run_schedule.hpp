@@ -41,6 +41,8 @@ inline void clear_previous_output(const fs::path& dir) {
         name == "scene.resolved.toml" || name == kCheckpointFile || is_atomic_temporary(name))
       fs::remove(entry.path());
   }
+  // What `runout analyse` wrote of the old run's frames.
+  fs::remove_all(dir / kAnalysisFolder);
 }
 
 inline std::string numbered(const char* stem, int frame, const char* ext) {

@@ -58,7 +58,10 @@ struct NamedField
 };
 
 // The image of the particles' fields projected on `grid`, with
-// `coverage`; the first field is the active scalars.
+// `coverage`. No active scalars: ParaView colours a new display by them,
+// with the range of the frame shown at Apply, and at t = 0 (where it opens
+// a series) xi is 0 everywhere: the grid's outline got a colour map from 0
+// to 1e-38 and its scalar bar, both kept as the time changed.
 void FillGrid(vtkImageData* image, const std::vector<Vec2>& points,
   const std::vector<NamedField>& fields, const GridSpec& grid, double radius)
 {
@@ -81,7 +84,6 @@ void FillGrid(vtkImageData* image, const std::vector<Vec2>& points,
   coverage->SetNumberOfTuples(static_cast<vtkIdType>(projection.coverage.size()));
   std::copy(projection.coverage.begin(), projection.coverage.end(), coverage->GetPointer(0));
   image->GetPointData()->AddArray(coverage);
-  image->GetPointData()->SetActiveScalars(fields.front().Name);
 }
 }
 

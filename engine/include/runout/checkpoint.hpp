@@ -17,6 +17,9 @@
 namespace runout {
 
 inline constexpr const char* kCheckpointFile = "checkpoint.bin";
+// The folder of a run's output folder that `runout analyse` writes into; a
+// new run removes it with the rest of the old run's files.
+inline constexpr const char* kAnalysisFolder = "analysis";
 
 // Where the run schedule (run_schedule.hpp) stands after a history row.
 struct ScheduleState {

@@ -15,11 +15,11 @@
 #include <string>
 
 #include "runout/analysis/run_analysis.hpp"
+#include "runout/checkpoint.hpp"
 
 namespace runout::analysis {
 
-// The folder of an output folder that `runout analyse` writes into.
-inline constexpr const char* kAnalysisFolder = "analysis";
+using runout::kAnalysisFolder;  // checkpoint.hpp: a new run clears it
 
 // Writes `run` into `dir` (created when missing), each file atomically,
 // after removing what an earlier analysis left there (its files only, so a
