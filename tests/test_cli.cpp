@@ -158,6 +158,19 @@ TEST_F(Cli, CheckPrintsAStepCountBeyondAnyInteger) {
   const Result r = run_cli("check " + path + " --max-steps 1e300");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("# steps (about):    9.47e+148 "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("# wall (about):     "), std::string::npos) << r.output;
+}
+
+// check measures the step on the scene itself: the whole run's wall time
+// on this machine, from its own milliseconds per step.
+TEST_F(Cli, CheckEstimatesTheWallTimeFromTheStepMeasuredHere) {
+  const Result r = run_cli("check " + write("small.toml", kSmallScene));
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto at = r.output.find("# wall (about):     ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+  EXPECT_NE(line.find(":"), std::string::npos) << line;
+  EXPECT_NE(line.find(" ms per step, measured)"), std::string::npos) << line;
 }
 
 // The limits are options: a run within a raised limit goes ahead.

@@ -17,8 +17,6 @@
 namespace runout {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // Wall time of the calibration: long enough to average over many steps,
 // short enough that a check stays a check.
 constexpr double kCalibrationSeconds = 0.3;
@@ -33,25 +31,14 @@ struct Calibration {
   double step_seconds = 0;
 };
 
-// Steps the model from the scene's start for kCalibrationSeconds of wall
-// time (after one step that warms the caches and sizes the grid), and
-// scales its wall time per step to the whole run: end / dt steps, dt the
-// CFL step of the start (the step falls a little as the slide speeds up,
-// and a run that comes to rest ends sooner).
+// seconds_per_step for kCalibrationSeconds, scaled to the whole run: end /
+// dt steps, dt the CFL step of the start (the step falls a little as the
+// slide speeds up, and a run that comes to rest ends sooner).
 template <class Model>
 Calibration calibrate(Model& model, int size, double cell, double end, int dimension) {
-  model.step(model.stable_dt());
-  const auto start = Clock::now();
-  long steps = 0;
-  double wall = 0;
-  while (wall < kCalibrationSeconds) {
-    model.step(model.stable_dt());
-    ++steps;
-    wall = std::chrono::duration<double>(Clock::now() - start).count();
-  }
   Calibration c;
   c.size = size;
-  c.step_seconds = wall / steps;
+  c.step_seconds = seconds_per_step(model, kCalibrationSeconds);
   c.steps = end / model.stable_dt();
   c.model = {cell, c.step_seconds * c.steps, dimension};
   return c;

@@ -158,6 +158,9 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
   return limits;
 }
 
+// Wall time of the check's own measurement of the step.
+constexpr double kWallEstimateSeconds = 0.1;
+
 int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args) {
   require_memory(s, s.method);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, nullptr), source);
@@ -181,6 +184,18 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
             << (s.method == Method::Dam ? "element" : "particle") << ", "
             << byte_text(memory.node_bytes) << " per grid node), "
             << (available ? byte_text(*available) : std::string("unknown")) << " available\n";
+  if (s.method == Method::Dam) return kOk;
+  // Measured on the scene itself, so "on this machine" and at its size.
+  try {
+    const double per_step = seconds_per_step(sim, kWallEstimateSeconds);
+    char ms[32];
+    std::snprintf(ms, sizeof ms, "%.3g", per_step * 1e3);
+    std::cout << "# wall (about):     " << clock_text(per_step * (s.time.end / dt)) << " on "
+              << omp_get_max_threads() << " thread(s) here (" << ms
+              << " ms per step, measured)\n";
+  } catch (const NumericalFailure& e) {
+    std::cout << "# wall (about):     not measured, the first steps failed: " << e.what() << "\n";
+  }
   return kOk;
 }
 

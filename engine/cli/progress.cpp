@@ -6,16 +6,17 @@
 #include <string>
 
 namespace runout {
-namespace {
 
 std::string clock_text(double seconds) {
-  const long s = static_cast<long>(seconds + 0.5);
   char buf[32];
+  if (!(seconds < 1e9)) {  // past 30 years, and NaN: no clock holds it
+    std::snprintf(buf, sizeof buf, "%.3g s", seconds);
+    return buf;
+  }
+  const long s = static_cast<long>(seconds + 0.5);
   std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
   return buf;
 }
-
-}  // namespace
 
 ProgressReporter::ProgressReporter() : tty_(isatty(STDERR_FILENO) != 0) {}
 

@@ -1,9 +1,14 @@
 #pragma once
 // Progress of a run on stderr: a redrawn bar with ETA on a terminal, plain
 // lines at most every few seconds otherwise (logs, CI).
+#include <string>
+
 #include "runout/run.hpp"
 
 namespace runout {
+
+// h:mm:ss, or seconds in %.3g beyond any clock.
+std::string clock_text(double seconds);
 
 class ProgressReporter {
  public:
