@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "runout/quoted_text.hpp"
+
 namespace runout::analysis::text {
 
 std::string csv_number(double value) {
@@ -24,21 +26,6 @@ std::string csv_text(std::string_view value) {
   return out + "\"";
 }
 
-std::string json_text(std::string_view value) {
-  std::string out = "\"";
-  for (const char c : value) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+std::string json_text(std::string_view value) { return quoted_text(value); }
 
 }  // namespace runout::analysis::text

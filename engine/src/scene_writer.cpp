@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "runout/quoted_text.hpp"
 #include "runout/scene_parser.hpp"
 #include "scene_text.hpp"
 
@@ -29,27 +30,6 @@ std::string points(const std::vector<Eigen::Vector2d>& list) {
   std::string text = "[";
   for (std::size_t i = 0; i < list.size(); ++i) text += (i ? ", " : "") + vec2(list[i]);
   return text + "]";
-}
-
-std::string quoted(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-          char escape[8];
-          std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(c));
-          out += escape;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
 }
 
 // The parser turns a slope into magnitude * (sin, -cos); |vector| can differ
@@ -82,8 +62,8 @@ void write_gravity(std::ostream& out, const GravitySpec& gravity) {
 
 void write_material(std::ostream& out, const MaterialSpec& m) {
   out << "[[material]]\n"
-      << "name = " << quoted(m.name) << "\n"
-      << "model = " << quoted(name_of(scene_text::kModelNames, m.model)) << "\n"
+      << "name = " << quoted_text(m.name) << "\n"
+      << "model = " << quoted_text(name_of(scene_text::kModelNames, m.model)) << "\n"
       << "density = " << number(m.density) << "\n"
       << "youngs_modulus = " << number(m.youngs_modulus) << "\n"
       << "poisson_ratio = " << number(m.poisson_ratio) << "\n";
@@ -95,7 +75,7 @@ void write_material(std::ostream& out, const MaterialSpec& m) {
         << "rate_exponent = " << number(m.rate_exponent) << "\n"
         << "reference_rate = " << number(m.reference_rate) << "\n"
         << "strength_form = "
-        << quoted(name_of(scene_text::kStrengthFormNames, m.strength_form)) << "\n";
+        << quoted_text(name_of(scene_text::kStrengthFormNames, m.strength_form)) << "\n";
     if (m.nonlocal_length > 0.0)  // 0 (local) is not a value the key takes
       out << "nonlocal_length = " << number(m.nonlocal_length) << "\n";
   }
@@ -105,8 +85,8 @@ void write_material(std::ostream& out, const MaterialSpec& m) {
 void write_body(std::ostream& out, const BodySpec& body,
                 const std::vector<MaterialSpec>& materials) {
   out << "[[body]]\n"
-      << "name = " << quoted(body.name) << "\n"
-      << "material = " << quoted(materials.at(body.material).name) << "\n"
+      << "name = " << quoted_text(body.name) << "\n"
+      << "material = " << quoted_text(materials.at(body.material).name) << "\n"
       << "type = \"polygon\"\n"
       << "vertices = " << points(body.polygon) << "\n"
       << "velocity = " << vec2(body.velocity) << "\n\n";
@@ -116,9 +96,9 @@ void write_body(std::ostream& out, const BodySpec& body,
 void write_base(std::ostream& out, const BaseSpec& base) {
   if (base.kind == BaseKind::None) return;
   out << "[base]\n"
-      << "kind = " << quoted(name_of(scene_text::kBaseNames, base.kind)) << "\n";
+      << "kind = " << quoted_text(name_of(scene_text::kBaseNames, base.kind)) << "\n";
   if (base.kind == BaseKind::Polyline) out << "points = " << points(base.points) << "\n";
-  out << "interface = " << quoted(name_of(scene_text::kInterfaceNames, base.interface)) << "\n";
+  out << "interface = " << quoted_text(name_of(scene_text::kInterfaceNames, base.interface)) << "\n";
   if (base.interface == InterfaceKind::Frictional)
     out << "shear_strength = " << number(base.shear_strength) << "\n";
   if (base.interface == InterfaceKind::Coulomb)
@@ -133,25 +113,25 @@ std::string to_toml(const Scene& scene) {
   std::ostringstream out;
   out << "# Resolved scene: every default filled in.\n"
       << "[scene]\n"
-      << "name = " << quoted(scene.name) << "\n"
-      << "description = " << quoted(scene.description) << "\n"
-      << "method = " << quoted(name_of(scene_text::kMethodNames, scene.method)) << "\n\n";
+      << "name = " << quoted_text(scene.name) << "\n"
+      << "description = " << quoted_text(scene.description) << "\n"
+      << "method = " << quoted_text(name_of(scene_text::kMethodNames, scene.method)) << "\n\n";
 
   const GridSpec& grid = scene.grid;
   out << "[grid]\n"
       << "cell_size = " << number(grid.cell_size) << "\n"
       << "min = " << vec2(grid.min) << "\n"
       << "max = " << vec2(grid.max) << "\n"
-      << "shape = " << quoted(name_of(scene_text::kShapeNames, grid.shape)) << "\n"
-      << "domain = " << quoted(name_of(scene_text::kDomainNames, grid.domain)) << "\n"
+      << "shape = " << quoted_text(name_of(scene_text::kShapeNames, grid.shape)) << "\n"
+      << "domain = " << quoted_text(name_of(scene_text::kDomainNames, grid.domain)) << "\n"
       << "ppc = " << grid.ppc << "\n\n";
 
   const BoundarySpec& b = scene.boundary;
   out << "[boundary]\n"
-      << "left = " << quoted(name_of(kBoundaryNames, b.left)) << "\n"
-      << "right = " << quoted(name_of(kBoundaryNames, b.right)) << "\n"
-      << "bottom = " << quoted(name_of(kBoundaryNames, b.bottom)) << "\n"
-      << "top = " << quoted(name_of(kBoundaryNames, b.top)) << "\n\n";
+      << "left = " << quoted_text(name_of(kBoundaryNames, b.left)) << "\n"
+      << "right = " << quoted_text(name_of(kBoundaryNames, b.right)) << "\n"
+      << "bottom = " << quoted_text(name_of(kBoundaryNames, b.bottom)) << "\n"
+      << "top = " << quoted_text(name_of(kBoundaryNames, b.top)) << "\n\n";
 
   out << "[time]\n"
       << "end = " << number(scene.time.end) << "\n"
@@ -163,7 +143,7 @@ std::string to_toml(const Scene& scene) {
   write_gravity(out, scene.gravity);
 
   out << "\n[solver]\n"
-      << "transfer = " << quoted(name_of(scene_text::kTransferNames, scene.solver.transfer))
+      << "transfer = " << quoted_text(name_of(scene_text::kTransferNames, scene.solver.transfer))
       << "\n"
       << "flip = " << number(scene.solver.flip) << "\n"
       << "pic_cells = " << number(scene.solver.pic_cells) << "\n"
@@ -179,10 +159,10 @@ std::string to_toml(const Scene& scene) {
   write_base(out, scene.base);
 
   out << "[dam]\n"
-      << "shear_rate = " << quoted(name_of(scene_text::kShearRateNames, scene.dam.shear_rate))
+      << "shear_rate = " << quoted_text(name_of(scene_text::kShearRateNames, scene.dam.shear_rate))
       << "\n"
       << "earth_pressure = "
-      << quoted(name_of(scene_text::kEarthPressureNames, scene.dam.earth_pressure)) << "\n"
+      << quoted_text(name_of(scene_text::kEarthPressureNames, scene.dam.earth_pressure)) << "\n"
       << "elements = " << scene.dam.elements << "\n\n";
 
   out << "[output]\n"
@@ -190,7 +170,7 @@ std::string to_toml(const Scene& scene) {
       << "[run]\n"
       << "overrides = [";
   for (std::size_t i = 0; i < scene.overrides.size(); ++i)
-    out << (i ? ", " : "") << quoted(scene.overrides[i]);
+    out << (i ? ", " : "") << quoted_text(scene.overrides[i]);
   out << "]\n";
   return out.str();
 }
