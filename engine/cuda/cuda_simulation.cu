@@ -572,12 +572,15 @@ void CudaSimulation::Impl::step(double dt) {
   grid_update_kernel<<<nb, kThreads>>>(g, c, dt);
   RUNOUT_CUDA_LAUNCHED("grid_update");
   exchange(Exchange::AfterGridUpdate, "periodic exchange (grid_update)");
+  const auto clear_momentum = [&] {  // px, py: the scatters after grid_update
+    RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.px, 0, nodes * sizeof(double)));
+    RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.py, 0, nodes * sizeof(double)));
+  };
   if (c.xpic_now) {  // V* of XPIC(m), as Simulation::xpic_start_velocity
     xpic_start_kernel<<<nb, kThreads>>>(g, c);
     RUNOUT_CUDA_LAUNCHED("xpic_start");
     for (int k = 2; k <= c.xpic_order; ++k) {
-      RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.px, 0, nodes * sizeof(double)));
-      RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.py, 0, nodes * sizeof(double)));
+      clear_momentum();
       p2g_smoothed_kernel<<<pb, kThreads>>>(P, g, c);
       RUNOUT_CUDA_LAUNCHED("p2g_smoothed");
       exchange(Exchange::AfterMomentum, "periodic exchange (p2g_smoothed)");
@@ -586,8 +589,7 @@ void CudaSimulation::Impl::step(double dt) {
       exchange(Exchange::AfterXpicTerm, "periodic exchange (xpic_term)");
     }
   }
-  RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.px, 0, nodes * sizeof(double)));
-  RUNOUT_CUDA_CHECK(cudaMemsetAsync(g.py, 0, nodes * sizeof(double)));
+  clear_momentum();
   g2p_momentum_kernel<<<pb, kThreads>>>(P, g, c);
   RUNOUT_CUDA_LAUNCHED("g2p and p2g_momentum");
   exchange(Exchange::AfterMomentum, "periodic exchange (p2g_momentum)");

@@ -359,6 +359,16 @@ RUNOUT_HD inline ContactResult geo_contact(const StepConfig& c, double m, double
   return {-m * dvt / dt, stuck};
 }
 
+// A velocity less its part along the base (+s, the normal (nx, ny) turned
+// clockwise): what a stuck node keeps of its start velocity, in grid_update
+// and in XPIC's round trips alike (B in xpic_term's comment).
+RUNOUT_HD inline void hold_tangential(double nx, double ny, double& vx, double& vy) {
+  const double tx = ny, ty = -nx;
+  const double vt = vx * tx + vy * ty;
+  vx -= vt * tx;
+  vy -= vt * ty;
+}
+
 // The kinematic part of Geo-contact, for velocities that carry no impulse
 // of their own (the mid-step and remapped velocities): no approach beyond
 // closing the gap, and no slip where grid_update held the node still, so a
@@ -426,11 +436,8 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
       // no-slip runouts, docs/convergence.md). The base then acts through
       // the strain rate it imposes, with the reaction -f_t, as a fixed
       // node does in CB-Geo mpm and MPM-Geomechanics.
-      const double tx = ny, ty = -nx;
-      const double v0t = v0x * tx + v0y * ty;
-      v0x -= v0t * tx;
-      v0y -= v0t * ty;
-      g.fbase[n] = -(fx * tx + fy * ty);
+      hold_tangential(nx, ny, v0x, v0y);
+      g.fbase[n] = -(fx * ny - fy * nx);  // along +s = (ny, -nx)
       g.stuck[n] = 1.0;
     }
   }
@@ -562,12 +569,7 @@ RUNOUT_HD inline void xpic_term(const GridView& g, int n, const StepConfig& c, i
   const double m = g.m[n];
   double ux = m > 0.0 ? g.px[n] / m : 0.0, uy = m > 0.0 ? g.py[n] / m : 0.0;
   double nx, ny;
-  if (g.stuck[n] != 0.0 && base_contact_normal(g, c, n, nx, ny)) {
-    const double tx = ny, ty = -nx;
-    const double ut = ux * tx + uy * ty;
-    ux -= ut * tx;
-    uy -= ut * ty;
-  }
+  if (g.stuck[n] != 0.0 && base_contact_normal(g, c, n, nx, ny)) hold_tangential(nx, ny, ux, uy);
   g.qx[n] = ux;
   g.qy[n] = uy;
   const double a = xpic_coefficient(c.xpic_order, k);
