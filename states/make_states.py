@@ -37,7 +37,9 @@ def main():
     run_dir = os.path.abspath(options.run_dir)
 
     runout_pv.load_plugin(options.plugin)
-    reader = runout_pv.open_run(runout_pv.find_pvd(run_dir))
+    # ParaView's own PVD reader: load_state.py points the state's
+    # PVDReader at the run it is given.
+    reader = runout_pv.open_run(runout_pv.find_pvd(run_dir), "PVDReader")
     runout_pv.set_time(reader.TimestepValues[-1])
     layout = simple.CreateLayout("strain bands")
     view = runout_pv.render_view()

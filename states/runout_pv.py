@@ -36,11 +36,13 @@ def load_plugin(plugin):
         simple.LoadPlugin(plugin, remote=False)
 
 
-def open_run(pvd):
-    """The PVDReader of a run, updated: the filters' array selectors take
+def open_run(pvd, reader_name="RunoutSeriesReader"):
+    """The reader of a run, updated: the filters' array selectors take
     their defaults from the input's arrays, which ParaView knows once the
-    reader has run (the GUI's Apply)."""
-    reader = simple.PVDReader(registrationName="run", FileName=pvd)
+    reader has run (the GUI's Apply). The plugin's Runout Series Reader
+    checks each frame against the run's manifest before VTK parses it, so a
+    damaged frame is a warning and an empty step, not an abort."""
+    reader = getattr(simple, reader_name)(registrationName="run", FileName=pvd)
     reader.UpdatePipeline()
     return reader
 

@@ -2,7 +2,9 @@
 run: a Tresca block sliding on a planar frictional slope, a few seconds of
 runtime. Loads the plugin, opens the run's .pvd, applies each filter that
 the plugin's XML files define with its default settings, updates every
-output port on the last frame, and checks the morphology filters' values.
+output port on the last frame, and checks the morphology filters' values;
+then opens the run again with the Runout Series Reader (frames checked
+against the manifest) and checks that it gives the same history.
 ctest fails the test on any "ERROR:" a filter prints.
 
 Usage: pvpython plugin_filters_on_run.py <RunoutPlugin.so> <folder of its XML files>
@@ -180,6 +182,17 @@ def main():
         runout = check_history(servermanager, filters["RunoutMorphologyHistory"], times)
         for k in (0, len(times) - 1):
             check_morphology(servermanager, filters["RunoutMorphology"], times[k], runout[k])
+
+        # The Runout Series Reader, which checks each frame against the
+        # run's manifest, gives the same series and the same history.
+        series = simple.RunoutSeriesReader(FileName=pvd)
+        series.UpdatePipeline()
+        if list(series.TimestepValues) != list(times):
+            fail(f"Runout Series Reader times {list(series.TimestepValues)}, PVD reader {list(times)}")
+        history = simple.RunoutMorphologyHistory(Input=series)
+        if check_history(servermanager, history, times) != runout:
+            fail("the history through the Runout Series Reader differs from the PVD reader's")
+        print("Runout Series Reader: the same", len(times), "frames and history")
     print("all Runout filters ran on", len(times), "frames")
 
 

@@ -1,7 +1,7 @@
 """RunoutPlugin in headless ParaView (pvpython or pvbatch): it loads, and
-every filter that its server-manager XML files define is in the "Runout"
-category of the loaded plugin, under the Python name ParaView gives it,
-with a menu icon that is a 32 x 32 PNG of RunoutIcons.qrc. With
+every filter and reader that its server-manager XML files define is in the
+"Runout" category of the Filters or Sources menu, under the Python name
+ParaView gives it, with a menu icon that is a 32 x 32 PNG of RunoutIcons.qrc. With
 RUNOUT_PLUGIN_ICONS=ON (the build found Qt's rcc) the plugin must hold
 each icon (its bytes and its name, which rcc stores as UTF-16): the GUI
 looks the icon up there, and one missing shows as no icon, silently.
@@ -19,10 +19,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from runout_paraview import paraview_and_arguments, runout_filters  # noqa: E402
 
 
-def loaded_runout_category(servermanager):
-    """{name: menu icon} of the loaded filter proxies shown in the Runout menu."""
+def loaded_runout_category(servermanager, group):
+    """{name: menu icon} of the loaded proxies of the group ("filters" or
+    "sources") shown in its menu's Runout category."""
     definitions = servermanager.ProxyManager().GetProxyDefinitionManager()
-    it = definitions.NewSingleGroupIterator("filters")
+    it = definitions.NewSingleGroupIterator(group)
     names = {}
     it.GoToFirstItem()
     while not it.IsDoneWithTraversal():
@@ -60,17 +61,20 @@ def icon_problems(icons, plugin, xml_folder):
 
 def main():
     servermanager, simple, plugin, xml_folder = paraview_and_arguments()
-    expected = runout_filters(xml_folder)
-    if not expected:
-        sys.exit(f"no filter proxies in {xml_folder}/*.xml")
+    expected = {group: runout_filters(xml_folder, group) for group in ("filters", "sources")}
+    if not all(expected.values()):
+        sys.exit(f"no filter or no reader proxies in {xml_folder}/*.xml")
 
     simple.LoadPlugin(plugin, remote=False)  # adds the filters' functions to simple
-    category = loaded_runout_category(servermanager)
-    if set(category) != set(expected):
-        sys.exit(f"Runout category {sorted(category)}, the XML files define {sorted(expected)}")
-    problems = icon_problems(category, plugin, xml_folder)
-    if problems:
-        sys.exit("\n".join(problems))
+    for group, proxies in expected.items():
+        category = loaded_runout_category(servermanager, group)
+        if set(category) != set(proxies):
+            sys.exit(f"Runout category of {group} {sorted(category)}, "
+                     f"the XML files define {sorted(proxies)}")
+        problems = icon_problems(category, plugin, xml_folder)
+        if problems:
+            sys.exit("\n".join(problems))
+    expected = {**expected["filters"], **expected["sources"]}
     missing = [name for name in expected.values() if not hasattr(simple, name)]
     if missing:
         sys.exit(f"{plugin} loaded, but without the Python functions {missing}")

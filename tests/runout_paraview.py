@@ -9,12 +9,13 @@ import sys
 import xml.etree.ElementTree as ET
 
 
-def runout_filters(xml_folder):
-    """{proxy name: Python name} of every filter proxy in the XML files."""
+def runout_filters(xml_folder, group_name="filters"):
+    """{proxy name: Python name} of every proxy of the group ("filters", or
+    "sources" for the reader) in the XML files."""
     filters = {}
     for path in sorted(glob.glob(os.path.join(xml_folder, "*.xml"))):
         for group in ET.parse(path).getroot().iter("ProxyGroup"):
-            if group.get("name") != "filters":
+            if group.get("name") != group_name:
                 continue
             for proxy in group.iter("SourceProxy"):
                 # ParaView names the Python function after the label, keeping

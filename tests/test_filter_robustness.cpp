@@ -4,7 +4,8 @@
 // array of the wrong length or width, ids beyond 64 bits, points beyond
 // any slide, no points at all). Each filter that reads the spoilt part
 // reports an error and leaves every output empty; the others are not
-// disturbed; none crashes. Also a series whose index lists a missing frame.
+// disturbed; none crashes. Also a series whose index lists a missing frame,
+// and the Runout Series Reader on frames that do not match the manifest.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 #include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkPVDReader.h>
 #include <vtkPointData.h>
@@ -33,11 +35,13 @@
 #include "runout/history.hpp"
 #include "runout/seeding.hpp"
 #include "runout/vtu_writer.hpp"
+#include "run_folder.hpp"
 #include "scene_builders.hpp"
 #include "vtkRunoutHorstGraben.h"
 #include "vtkRunoutMorphology.h"
 #include "vtkRunoutMorphologyHistory.h"
 #include "vtkRunoutPlasticStrain.h"
+#include "vtkRunoutSeriesReader.h"
 #include "vtkRunoutShearBands.h"
 
 namespace fs = std::filesystem;
@@ -267,11 +271,11 @@ TEST(FilterRobustness, EmptyFrameIsAWarningWithEmptyOutputs) {
   }
 }
 
-// The index lists three frames; the second file is gone. VTK's PVD reader
-// reports it; the history filter skips that step with a warning naming it
-// and keeps the rows of the others, so one lost frame costs one row.
-TEST(FilterRobustness, SeriesWithAMissingFrameSkipsItWithAWarning) {
-  const fs::path dir = fs::temp_directory_path() / ("runout_robust_pvd_" + std::to_string(getpid()));
+namespace {
+
+// A series of three frames (times 0, 1, 2) written as the engine writes
+// one: the index, and the manifest beside it.
+std::string three_frame_series(const fs::path& dir) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   runout::PvdIndex index((dir / "series.pvd").string());
@@ -280,23 +284,119 @@ TEST(FilterRobustness, SeriesWithAMissingFrameSkipsItWithAWarning) {
     write_slab(dir / name, k);
     index.add(k, name);
   }
+  return index.path();
+}
+
+// The history of a series read by `reader`, with the history filter's and
+// the reader's errors and warnings counted.
+struct SeriesHistory {
+  vtkNew<vtkRunoutMorphologyHistory> history;
+  vtkNew<ErrorCounter> errors, warnings, reader_errors, reader_warnings;
+  explicit SeriesHistory(vtkAlgorithm* reader) {
+    reader->AddObserver(vtkCommand::ErrorEvent, reader_errors);
+    reader->AddObserver(vtkCommand::WarningEvent, reader_warnings);
+    history->AddObserver(vtkCommand::ErrorEvent, errors);
+    history->AddObserver(vtkCommand::WarningEvent, warnings);
+    history->SetInputConnection(reader->GetOutputPort());
+    history->Update();
+  }
+  std::vector<double> times() {
+    vtkTable* rows = vtkTable::SafeDownCast(history->GetOutputDataObject(0));
+    std::vector<double> t;
+    for (vtkIdType r = 0; r < rows->GetNumberOfRows(); ++r) t.push_back(rows->GetValue(r, 0).ToDouble());
+    return t;
+  }
+};
+
+fs::path series_folder(const std::string& tag) {
+  return fs::temp_directory_path() / ("runout_robust_" + tag + "_" + std::to_string(getpid()));
+}
+
+}  // namespace
+
+// The index lists three frames; the second file is gone. VTK's PVD reader
+// reports it; the history filter skips that step with a warning naming it
+// and keeps the rows of the others, so one lost frame costs one row.
+TEST(FilterRobustness, SeriesWithAMissingFrameSkipsItWithAWarning) {
+  const fs::path dir = series_folder("pvd");
+  const std::string pvd = three_frame_series(dir);
   fs::remove(dir / "frame_00001.vtu");
   vtkNew<vtkPVDReader> reader;
-  reader->SetFileName(index.path().c_str());
-  vtkNew<ErrorCounter> reader_errors;
-  reader->AddObserver(vtkCommand::ErrorEvent, reader_errors);
-  vtkNew<vtkRunoutMorphologyHistory> history;
-  vtkNew<ErrorCounter> errors, warnings;
-  history->AddObserver(vtkCommand::ErrorEvent, errors);
-  history->AddObserver(vtkCommand::WarningEvent, warnings);
-  history->SetInputConnection(reader->GetOutputPort());
-  history->Update();
-  EXPECT_EQ(errors->errors, 0) << errors->last;
-  EXPECT_EQ(warnings->errors, 1) << warnings->last;
-  EXPECT_NE(warnings->last.find("Time step 1"), std::string::npos) << warnings->last;
-  vtkTable* rows = vtkTable::SafeDownCast(history->GetOutputDataObject(0));
-  ASSERT_EQ(rows->GetNumberOfRows(), 2);
-  EXPECT_EQ(rows->GetValue(0, 0).ToDouble(), 0.0);
-  EXPECT_EQ(rows->GetValue(1, 0).ToDouble(), 2.0);
+  reader->SetFileName(pvd.c_str());
+  SeriesHistory run(reader);
+  EXPECT_EQ(run.errors->errors, 0) << run.errors->last;
+  EXPECT_EQ(run.warnings->errors, 1) << run.warnings->last;
+  EXPECT_NE(run.warnings->last.find("Time step 1"), std::string::npos) << run.warnings->last;
+  EXPECT_EQ(run.times(), (std::vector<double>{0.0, 2.0}));
   fs::remove_all(dir);
+}
+
+// The Runout Series Reader checks each frame against the manifest before
+// VTK parses it: a frame altered in one byte (one base64 character of its
+// first array, as a flipped bit on disk would: VTK's reader can abort on
+// such a frame), cut short, or gone, is a warning naming the file and why,
+// and an empty output at its step; the history keeps the other rows.
+TEST(FilterRobustness, SeriesReaderSkipsFramesThatDoNotMatchTheManifest) {
+  const fs::path dir = series_folder("manifest");
+  const std::string pvd = three_frame_series(dir);
+  {  // the whole series first: every frame read, nothing reported
+    vtkNew<vtkRunoutSeriesReader> reader;
+    reader->SetFileName(pvd.c_str());
+    SeriesHistory run(reader);
+    EXPECT_EQ(run.reader_warnings->errors + run.reader_errors->errors + run.warnings->errors, 0)
+        << run.reader_warnings->last << run.warnings->last;
+    EXPECT_EQ(run.times(), (std::vector<double>{0.0, 1.0, 2.0}));
+    reader->UpdateTimeStep(1.5);  // the last frame at or before the time, as vtkPVDReader
+    EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), slab().size());
+    EXPECT_EQ(reader->GetOutput()->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), 1.0);
+  }
+  const fs::path frame = dir / "frame_00001.vtu";
+  const std::string whole = runout::run_folder::read_file(frame);
+  std::string altered = whole;
+  const auto data = altered.find("format=\"binary\"");
+  ASSERT_NE(data, std::string::npos);
+  char& c = altered[altered.find('>', data) + 8];
+  c = c == 'A' ? 'B' : 'A';
+  const std::vector<std::pair<std::string, std::string>> spoilt = {
+      {altered, "CRC-32"}, {whole.substr(0, whole.size() / 2), "bytes, the manifest says"}, {"", "missing"}};
+  for (const auto& [bytes, why] : spoilt) {
+    SCOPED_TRACE(why);
+    fs::remove(frame);
+    if (!bytes.empty()) std::ofstream(frame, std::ios::binary) << bytes;
+    vtkNew<vtkRunoutSeriesReader> reader;
+    reader->SetFileName(pvd.c_str());
+    SeriesHistory run(reader);
+    EXPECT_EQ(run.reader_errors->errors + run.errors->errors, 0) << run.errors->last;
+    ASSERT_EQ(run.reader_warnings->errors, 1);
+    EXPECT_NE(run.reader_warnings->last.find("frame_00001.vtu"), std::string::npos);
+    EXPECT_NE(run.reader_warnings->last.find(why), std::string::npos) << run.reader_warnings->last;
+    EXPECT_EQ(run.warnings->errors, 1) << run.warnings->last;  // the history's skipped step
+    EXPECT_EQ(run.times(), (std::vector<double>{0.0, 2.0}));
+  }
+  fs::remove_all(dir);
+}
+
+// A run older than the manifest is read unchecked, with one warning.
+TEST(FilterRobustness, SeriesReaderWithoutAManifestReadsUncheckedAndSaysSo) {
+  const fs::path dir = series_folder("nomanifest");
+  const std::string pvd = three_frame_series(dir);
+  fs::remove(runout::manifest_path(pvd));
+  vtkNew<vtkRunoutSeriesReader> reader;
+  reader->SetFileName(pvd.c_str());
+  SeriesHistory run(reader);
+  EXPECT_EQ(run.reader_warnings->errors, 1);
+  EXPECT_NE(run.reader_warnings->last.find("unchecked"), std::string::npos) << run.reader_warnings->last;
+  EXPECT_EQ(run.times(), (std::vector<double>{0.0, 1.0, 2.0}));
+  fs::remove_all(dir);
+}
+
+// An index that is not there is an error, and the output is empty.
+TEST(FilterRobustness, SeriesReaderWithoutAnIndexIsAnError) {
+  vtkNew<vtkRunoutSeriesReader> reader;
+  vtkNew<ErrorCounter> errors;
+  reader->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->SetFileName((series_folder("none") / "none.pvd").string().c_str());
+  reader->Update();
+  EXPECT_EQ(errors->errors, 1);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
 }

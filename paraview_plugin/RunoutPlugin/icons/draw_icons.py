@@ -1,4 +1,4 @@
-"""Draws the Runout filters' menu icons (the PNGs beside this file, which
+"""Draws the Runout filters' and reader's menu icons (the PNGs beside this file, which
 the plugin compiles in through RunoutIcons.qrc). PNG, not SVG: Debian's
 ParaView 5.11 has no Qt SVG image plugin (libqt5svg5 is not among its
 dependencies), so an SVG icon would show as none.
@@ -18,6 +18,7 @@ BASE = (110, 110, 110, 255)
 STRAIN = (220, 40, 30, 255)      # the bands' and the strain's red
 PROFILE = (240, 140, 20, 255)    # the profile's orange
 LOW = (60, 90, 200, 255)
+CHECKED = (40, 150, 60, 255)     # the series reader's check mark
 
 
 def px(*points):
@@ -70,9 +71,17 @@ def morphology_history(draw):
     draw.line(px((5, 14), (14, 19), (29, 22)), fill=LOW, width=3 * SCALE)
 
 
+def series_reader(draw):
+    # Three frames of a series, the front one checked (against the manifest).
+    for k in (2, 1, 0):
+        x, y = 4 + 4 * k, 12 - 4 * k
+        draw.rectangle(px((x, y), (x + 18, y + 16)), fill=SLIDE, outline=BASE, width=SCALE)
+    draw.line(px((8, 20), (12, 25), (28, 9)), fill=CHECKED, width=4 * SCALE, joint="curve")
+
+
 ICONS = {"PlasticStrain": plastic_strain, "ShearBands": shear_bands,
          "HorstsAndGrabens": horsts_and_grabens, "Morphology": morphology,
-         "MorphologyHistory": morphology_history}
+         "MorphologyHistory": morphology_history, "SeriesReader": series_reader}
 
 
 def main():

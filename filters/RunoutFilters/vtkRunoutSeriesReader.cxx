@@ -1,0 +1,192 @@
+#include "vtkRunoutSeriesReader.h"
+
+#include "vtkCommand.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkXMLUnstructuredGridReader.h"
+
+#include "runout/vtu_writer.hpp"  // read_pvd_entries, FrameManifest
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <stdexcept>
+
+vtkStandardNewMacro(vtkRunoutSeriesReader);
+
+namespace
+{
+// Counts the errors VTK's XML reader reports, and keeps the last, so that
+// a frame it cannot parse is this reader's warning, not a second error.
+class ParseErrors : public vtkCommand
+{
+public:
+  static ParseErrors* New() { return new ParseErrors; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    ++this->Count;
+    this->Last = data ? static_cast<const char*>(data) : "";
+  }
+  int Count = 0;
+  std::string Last;
+};
+
+std::optional<std::string> ReadBytes(const std::filesystem::path& path)
+{
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(path, ignored))
+  {
+    return std::nullopt;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    return std::nullopt;
+  }
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+}
+
+//------------------------------------------------------------------------------
+vtkRunoutSeriesReader::vtkRunoutSeriesReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+//------------------------------------------------------------------------------
+vtkRunoutSeriesReader::~vtkRunoutSeriesReader()
+{
+  this->SetFileName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkRunoutSeriesReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  this->Frames.clear();
+  if (!this->FileName || !*this->FileName)
+  {
+    vtkErrorMacro(<< "No FileName: give the run's .pvd index.");
+    return 0;
+  }
+  try
+  {
+    for (const auto& entry : runout::read_pvd_entries(this->FileName))
+    {
+      if (std::isfinite(entry.first))
+      {
+        this->Frames.push_back(entry);
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< this->FileName << ": " << e.what());
+    return 0;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (this->Frames.empty())
+  {
+    vtkWarningMacro(<< this->FileName << " lists no frame with a time.");
+    return 1;
+  }
+  std::vector<double> times;
+  for (const auto& frame : this->Frames)
+  {
+    times.push_back(frame.first);
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+    static_cast<int>(times.size()));
+  const double range[2] = { times.front(), times.back() };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRunoutSeriesReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outInfo);
+  output->Initialize();
+  if (this->Frames.empty())
+  {
+    return 1;
+  }
+  const double requested = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+    : this->Frames.front().first;
+  const auto& [time, file] = this->Frames[this->FrameAt(requested)];
+  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);
+
+  const std::filesystem::path path = std::filesystem::path(this->FileName).parent_path() / file;
+  const std::optional<std::string> bytes = ReadBytes(path);
+  std::string problem = bytes ? this->ManifestProblem(file, *bytes) : "missing or unreadable";
+  if (problem.empty())
+  {
+    // VTK parses the very bytes the manifest vouched for, not the file again.
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    vtkNew<ParseErrors> errors;
+    reader->AddObserver(vtkCommand::ErrorEvent, errors);
+    reader->ReadFromInputStringOn();
+    reader->SetInputString(*bytes);
+    reader->Update();
+    if (errors->Count == 0)
+    {
+      output->ShallowCopy(reader->GetOutput());
+      return 1;
+    }
+    problem = "VTK cannot read it (" + errors->Last + ")";
+  }
+  vtkWarningMacro(<< "Frame " << file << " (time " << time << "): " << problem
+                  << "; skipped, the output is empty.");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+std::size_t vtkRunoutSeriesReader::FrameAt(double time) const
+{
+  std::size_t k = 0;
+  while (k + 1 < this->Frames.size() && this->Frames[k + 1].first <= time)
+  {
+    ++k;
+  }
+  return k;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRunoutSeriesReader::ManifestProblem(
+  const std::string& file, const std::string& bytes)
+{
+  // Read at every frame: a run still writing adds to its manifest.
+  try
+  {
+    return runout::FrameManifest(this->FileName).problem(file, bytes);
+  }
+  catch (const std::exception&)
+  {
+    if (this->WarnedNoManifestFor != this->FileName)
+    {
+      this->WarnedNoManifestFor = this->FileName;
+      vtkWarningMacro(<< "No manifest " << runout::manifest_path(this->FileName)
+                      << ": the frames are read unchecked.");
+    }
+    return "";
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkRunoutSeriesReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "Frames: " << this->Frames.size() << "\n";
+}
