@@ -706,6 +706,32 @@ TEST(Seeding, TrapezoidVolumeWithinOneCellRow) {
   }
 }
 
+// The lattice seeds a layer to the last sub-cell centre inside it: a
+// block 2.9 m high at spacing 0.5 m is seeded 6 rows, 3 m, high (at 0.8 m
+// the reference slides' 5 m were 4.8 m). Its particles carry the block's
+// own mass, rho A, so its weight and basal stresses are the block's; a
+// second block the lattice fills exactly keeps rho v per particle, bit
+// for bit.
+TEST(Seeding, EachBodyCarriesTheMassOfItsArea) {
+  Scene s = parse_scene(
+      replace_lines(25, 25, "max = [3.0, 2.9]\n\n[[body]]\nname = \"second\"\nmaterial = \"clay\"\n"
+                            "type = \"rectangle\"\nmin = [5.0, 0.0]\nmax = [6.0, 1.0]"),
+      "two.toml");
+  s.grid.ppc = 1;
+  const Particles p = seed_particles(s);
+  double mass[2] = {0.0, 0.0}, volume = 0.0;
+  for (int i = 0; i < p.size(); ++i) {
+    mass[p.body[i]] += p.mass[i];
+    if (p.body[i] == 0) volume += p.vol[i];
+    if (p.body[i] == 1) {
+      EXPECT_EQ(p.mass[i], 600.0 * 0.25);
+    }
+  }
+  EXPECT_NEAR(volume, 2.0 * 3.0, 1e-12);  // 4 columns of 6 rows of 0.25 m2
+  EXPECT_NEAR(mass[0] / (600.0 * 2.0 * 2.9), 1.0, 1e-12);
+  EXPECT_NEAR(mass[1] / (600.0 * 1.0 * 1.0), 1.0, 1e-12);
+}
+
 TEST(Seeding, IdsRunThroughEveryBody) {
   const Scene s = parse_scene(
       replace_lines(25, 25, "max = [3.0, 2.0]\n\n[[body]]\nname = \"second\"\nmaterial = \"clay\"\n"
