@@ -17,10 +17,11 @@
 //
 // q_e the layer's longitudinal deviator sigma_x - sigma_z (tension
 // positive), elastic with the incompressible plane-strain modulus 4 G and
-// bounded by the Rankine limits |q| <= 2 su (docs/dam.md, "Longitudinal
-// stress"). tau_e comes from the strength law of strength.hpp at the
-// element's accumulated basal shear strain xi_e and its shear strain rate
-// estimate (scene.dam, docs/dam.md "Shear strain rate"):
+// bounded by the Rankine limits |q| <= 2 su, su at the layer's plastic
+// strain and plastic shear rate (a backward-Euler viscoplastic return;
+// docs/dam.md, "Longitudinal stress"). tau_e comes from the strength law
+// of strength.hpp at the element's accumulated basal shear strain xi_e and
+// its shear strain rate estimate (scene.dam, docs/dam.md "Shear strain rate"):
 //   Linear: a linear velocity profile from rest at the base, 2 |v| / h;
 //   Plug:   the basal rate of a Herschel-Bulkley plug flow whose rheology is
 //           the strength law: sheared layer f h with f = 1 - tau_y / tau_b.
