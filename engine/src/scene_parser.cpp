@@ -490,6 +490,8 @@ SolverSpec read_solver(TableReader r) {
     solver.xpic_cells = v->number(at_least(0.0));
     if (solver.xpic_cells > 0.0 && solver.transfer != TransferKind::Flip)
       v->fail("is a schedule for transfer \"flip\" (transfer \"xpic\" filters every step)");
+  } else if (solver.transfer != TransferKind::Flip) {
+    solver.xpic_cells = 0.0;  // the default schedule is FLIP's
   }
   if (auto v = r.find("mass_threshold"))
     solver.mass_threshold = v->number(between(0, 1, "[)"));

@@ -60,8 +60,10 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
   c.shear_strength = s.base.shear_strength;
   c.friction = s.base.friction;
   c.xpic_order = s.solver.xpic_order;
-  // As pic_time: xpic_cells crossings of a cell by the fastest P-wave.
-  c.xpic_period = c_max > 0.0 ? s.solver.xpic_cells * h / c_max : 0.0;
+  // As pic_time: xpic_cells crossings of a cell by the fastest P-wave; a
+  // schedule of FLIP's only (the parser refuses it with another transfer).
+  const bool scheduled = s.solver.transfer == TransferKind::Flip && c_max > 0.0;
+  c.xpic_period = scheduled ? s.solver.xpic_cells * h / c_max : 0.0;
   return c;
 }
 
