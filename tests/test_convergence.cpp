@@ -15,10 +15,10 @@
 //   cells);
 // - mesh convergence of the non-softening cases 2 and 3 at 1, 0.5 and
 //   0.25 m cells: the runout differences shrink, with the observed order
-//   printed (2.35 for case 2, 2.05 for case 3 at e39e58e); case 3 is
-//   within 2 % of its 0.25 m runout at 0.5 m. Case 2 at 0.1 m (19.01 m)
-//   falls 8 % below its 0.25 m runout, so the three cells here do not show
-//   its convergence (docs/convergence.md, "Mesh trend").
+//   printed (1.70 for case 2, 2.00 for case 3 at 9776f13); case 3 is
+//   within 2 % of its 0.25 m runout at 0.5 m. On finer cells case 2's
+//   runout stays in a band of +-3 % with no order (docs/convergence.md,
+//   "Mesh trend"), so the three cells here do not show its convergence.
 #include <gtest/gtest.h>
 
 #include <algorithm>
