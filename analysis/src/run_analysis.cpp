@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <optional>
 
 #include "runout/analysis/frame_base.hpp"
@@ -42,12 +40,6 @@ const VtuArray* point_array(const VtuFrame& frame, NeededArray needed, std::stri
 double field_value(const VtuFrame& frame, const char* name) {
   const VtuArray* a = frame.field_array(name);
   return a && !a->values.empty() ? a->values[0] : std::nan("");
-}
-
-std::optional<std::string> read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 }  // namespace
@@ -106,7 +98,7 @@ RunAnalysis analyse_run(const std::string& pvd_path, const AnalysisParameters& p
     warn("no manifest " + fs::path(manifest_path(pvd_path)).filename().string() +
          ": the frames are read without checking them against it");
   }
-  const fs::path folder = fs::path(pvd_path).parent_path();
+  const std::string folder = fs::path(pvd_path).parent_path().string();
   for (std::size_t k = 0; k < entries.size(); ++k) {
     // (Not a structured binding: C++17 lambdas cannot capture one.)
     const double time = entries[k].first;
@@ -115,25 +107,19 @@ RunAnalysis analyse_run(const std::string& pvd_path, const AnalysisParameters& p
       warn(file + ": " + reason + "; skipped");
       run.skipped.push_back({k, file, reason});
     };
-    std::error_code ignored;
-    const std::optional<std::string> bytes = read_bytes(folder / file);
-    if (!bytes || !fs::is_regular_file(folder / file, ignored)) {
-      skip(fs::exists(folder / file, ignored) ? "cannot be read" : "missing");
+    std::string bytes;
+    const std::string unreadable =
+        read_listed_frame(folder, file, manifest ? &*manifest : nullptr, bytes);
+    if (!unreadable.empty()) {
+      skip(unreadable);
       continue;
-    }
-    if (manifest) {
-      const std::string mismatch = manifest->problem(file, *bytes);
-      if (!mismatch.empty()) {
-        skip("does not match the manifest: " + mismatch);
-        continue;
-      }
     }
     FrameAnalysis frame;
     frame.index = k;
     frame.file = file;
     std::string problem;
     try {
-      const VtuFrame vtu = parse_vtu_frame(*bytes);
+      const VtuFrame vtu = parse_vtu_frame(bytes);
       frame.time = std::isnan(time) ? field_value(vtu, "TimeValue") : time;
       problem = analyse_frame(vtu, parameters, frame);
     } catch (const VtuReadError& e) {

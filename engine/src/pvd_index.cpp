@@ -144,6 +144,19 @@ std::string FrameManifest::problem(const std::string& file) const {
   return problem(file, read_whole(in_folder(folder_, file)));
 }
 
+std::string read_listed_frame(const std::string& folder, const std::string& file,
+                              const FrameManifest* manifest, std::string& bytes) {
+  const std::string path = in_folder(folder, file);
+  std::error_code ignored;
+  std::ifstream in(path, std::ios::binary);
+  if (!in || !std::filesystem::is_regular_file(path, ignored))
+    return std::filesystem::exists(path, ignored) ? "cannot be read" : "missing";
+  bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (!manifest) return "";
+  const std::string mismatch = manifest->problem(file, bytes);
+  return mismatch.empty() ? "" : "does not match the manifest: " + mismatch;
+}
+
 std::vector<std::string> verify_frames(const std::string& pvd_path) {
   const FrameManifest manifest(pvd_path);
   std::vector<std::string> bad;

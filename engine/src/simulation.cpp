@@ -61,7 +61,9 @@ StepConfig make_config(const Scene& s, const std::vector<MaterialParams>& materi
   c.friction = s.base.friction;
   c.xpic_order = s.solver.xpic_order;
   // As pic_time: xpic_cells crossings of a cell by the fastest P-wave; a
-  // schedule of FLIP's only (the parser refuses it with another transfer).
+  // schedule of FLIP's only. The parser refuses it with another transfer
+  // and sets 0 there (so a resolved scene reads back); a scene built in
+  // code keeps SolverSpec's default 40 whatever its transfer.
   const bool scheduled = s.solver.transfer == TransferKind::Flip && c_max > 0.0;
   c.xpic_period = scheduled ? s.solver.xpic_cells * h / c_max : 0.0;
   return c;

@@ -13,8 +13,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <optional>
 #include <stdexcept>
 
@@ -37,19 +35,18 @@ public:
   std::string Last;
 };
 
-std::optional<std::string> ReadBytes(const std::filesystem::path& path)
+// The manifest of the index at `pvd` as it is on disk now; none for a run
+// without one.
+std::optional<runout::FrameManifest> ManifestOf(const char* pvd)
 {
-  std::error_code ignored;
-  if (!std::filesystem::is_regular_file(path, ignored))
+  try
+  {
+    return runout::FrameManifest(pvd);
+  }
+  catch (const std::exception&)
   {
     return std::nullopt;
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-  {
-    return std::nullopt;
-  }
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 }
 
@@ -127,9 +124,16 @@ int vtkRunoutSeriesReader::RequestData(
   const auto& [time, file] = this->Frames[this->FrameAt(requested)];
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);
 
-  const std::filesystem::path path = std::filesystem::path(this->FileName).parent_path() / file;
-  const std::optional<std::string> bytes = ReadBytes(path);
-  std::string problem = bytes ? this->ManifestProblem(file, *bytes) : "missing or unreadable";
+  // Read at every frame: a run still writing adds to its manifest.
+  const std::optional<runout::FrameManifest> manifest = ManifestOf(this->FileName);
+  if (!manifest)
+  {
+    this->WarnNoManifest();
+  }
+  std::string bytes;
+  std::string problem = runout::read_listed_frame(
+    std::filesystem::path(this->FileName).parent_path().string(), file,
+    manifest ? &*manifest : nullptr, bytes);
   if (problem.empty())
   {
     // VTK parses the very bytes the manifest vouched for, not the file again.
@@ -137,7 +141,7 @@ int vtkRunoutSeriesReader::RequestData(
     vtkNew<ParseErrors> errors;
     reader->AddObserver(vtkCommand::ErrorEvent, errors);
     reader->ReadFromInputStringOn();
-    reader->SetInputString(*bytes);
+    reader->SetInputString(bytes);
     reader->Update();
     if (errors->Count == 0)
     {
@@ -163,23 +167,13 @@ std::size_t vtkRunoutSeriesReader::FrameAt(double time) const
 }
 
 //------------------------------------------------------------------------------
-std::string vtkRunoutSeriesReader::ManifestProblem(
-  const std::string& file, const std::string& bytes)
+void vtkRunoutSeriesReader::WarnNoManifest()
 {
-  // Read at every frame: a run still writing adds to its manifest.
-  try
+  if (this->WarnedNoManifestFor != this->FileName)
   {
-    return runout::FrameManifest(this->FileName).problem(file, bytes);
-  }
-  catch (const std::exception&)
-  {
-    if (this->WarnedNoManifestFor != this->FileName)
-    {
-      this->WarnedNoManifestFor = this->FileName;
-      vtkWarningMacro(<< "No manifest " << runout::manifest_path(this->FileName)
-                      << ": the frames are read unchecked.");
-    }
-    return "";
+    this->WarnedNoManifestFor = this->FileName;
+    vtkWarningMacro(<< "No manifest " << runout::manifest_path(this->FileName)
+                    << ": the frames are read unchecked.");
   }
 }
 

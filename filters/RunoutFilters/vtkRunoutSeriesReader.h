@@ -58,10 +58,8 @@ private:
 
   // The entry of Frames shown at `time`: the last at or before it.
   std::size_t FrameAt(double time) const;
-  // What is wrong with frame `file`, whose bytes are `bytes`, against the
-  // manifest now on disk; "" when it matches or when the run has no
-  // manifest (warned once).
-  std::string ManifestProblem(const std::string& file, const std::string& bytes);
+  // Says once per index that its run has no manifest to check against.
+  void WarnNoManifest();
 
   char* FileName = nullptr;
   std::vector<std::pair<double, std::string>> Frames;  // time, file: the index's finite times

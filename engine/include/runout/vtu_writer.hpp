@@ -79,6 +79,15 @@ class FrameManifest {
   std::map<std::string, Sum> recorded_;
 };
 
+// Reads frame `file`, as an index in `folder` lists it, into `bytes` and
+// checks those bytes against `manifest` where there is one (nullptr: a run
+// without one): what is wrong with the frame ("missing", "cannot be read",
+// "does not match the manifest: ..."), "" when its bytes can be parsed.
+// `runout analyse` and the ParaView series reader parse the very bytes
+// checked.
+std::string read_listed_frame(const std::string& folder, const std::string& file,
+                              const FrameManifest* manifest, std::string& bytes);
+
 // The frames of the .pvd at pvd_path that do not match its manifest, each
 // "file: why" (missing, not listed in the manifest, size, checksum); empty
 // when every listed frame is whole. Throws std::runtime_error when the
