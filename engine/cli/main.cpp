@@ -8,6 +8,7 @@
 // reports a process the signal killed.
 #include <omp.h>
 #include <signal.h>
+#include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -26,6 +27,7 @@
 #include "openmp_wait.hpp"
 #include "progress.hpp"
 #include "study_command.hpp"
+#include "runout/analysis/final_mechanism.hpp"
 #include "runout/checkpoint.hpp"
 #include "runout/device_info.hpp"
 #include "runout/materials.hpp"
@@ -33,6 +35,7 @@
 #include "runout/atomic_file.hpp"
 #include "runout/run.hpp"
 #include "runout/run_control.hpp"
+#include "runout/run_summary_file.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
 #include "runout/vtu_writer.hpp"
@@ -231,16 +234,35 @@ Runner runner_for(const Scene& s, const std::string& backend, std::string& why_n
   return nullptr;
 }
 
-// Runs go (a run or a resume) with progress and prints its summary; the
-// exit code.
+// summary.json of the run that just ended, with this process's peak
+// memory and the mechanism of its last frame (the analysis library's rule,
+// which the engine library does not link).
+void write_summary(const RunSummary& r, const RunOptions& opt, bool depth_averaged) {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::string why;
+  const std::string mechanism =
+      depth_averaged ? std::string() : analysis::final_mechanism(r.pvd_path, why);
+  write_run_record(opt.out_dir, make_run_record(r, opt.out_dir,
+                                                depth_averaged ? Method::Dam : Method::Mpm,
+                                                stopped_by(), usage.ru_maxrss / 1024.0, mechanism));
+}
+
+// Runs go (a run or a resume) with progress, writes its summary.json and
+// prints its summary; the exit code.
 int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOptions& opt,
             bool quiet, bool depth_averaged) {
   ProgressReporter progress;
   RunOptions with_progress = opt;
   if (!quiet) with_progress.on_progress = [&](const RunProgress& p) { progress.update(p); };
   RunSummary r;
+  // An earlier run's summary is not this one's: a run killed before its end
+  // leaves none.
+  std::error_code ignored;
+  std::filesystem::remove(std::filesystem::path(opt.out_dir) / kSummaryFile, ignored);
   try {
     r = go(with_progress);
+    write_summary(r, opt, depth_averaged);
   } catch (const SceneError&) {
     progress.finish();
     throw;  // a scene the method cannot run: main's exit code for it
