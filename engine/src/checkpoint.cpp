@@ -26,7 +26,8 @@ namespace {
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "checkpoints are little-endian");
 
 constexpr char kMagic[8] = {'R', 'U', 'N', 'O', 'U', 'T', 'C', 'K'};
-constexpr std::uint32_t kVersion = 2;  // 2: APIC affine velocity and F per particle
+constexpr std::uint32_t kVersion = 3;  // 2: APIC affine velocity and F per particle;
+                                         // 3: rest_peak is the bulk speed squared
 // magic, version, payload size; the payload; then its checksum.
 constexpr std::size_t kHeaderBytes = sizeof kMagic + 4 + 8;
 constexpr std::size_t kChecksumBytes = 8;

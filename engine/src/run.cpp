@@ -55,10 +55,11 @@ RunSummary run_dam(const Scene& scene, const RunOptions& options) {
   const auto record = [&] {
     const HistoryRow row = dam_history_row(dam, initial_toe);
     history.append(row);
-    return rest.at_rest(row.time, row.kinetic_energy);
+    return rest.at_rest(row.time, row.toe_velocity, row.centroid_velocity);
   };
   const auto at_rest = [&] {
-    return rest.at_rest(dam.time(), dam_history_row(dam, initial_toe).kinetic_energy);
+    const HistoryRow row = dam_history_row(dam, initial_toe);
+    return rest.at_rest(row.time, row.toe_velocity, row.centroid_velocity);
   };
   run_schedule(scene, options, start, dam, 0, record, write_frame, 0, [](long) {}, at_rest,
                summary);

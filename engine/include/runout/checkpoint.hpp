@@ -27,7 +27,7 @@ struct ScheduleState {
   long checkpoint_rows = 0;  // a checkpoint every this many rows
   int frames = 0;            // frames written, frame_00000 .. frame_<frames - 1>
   std::vector<std::pair<double, std::string>> pvd;  // the index: time, file
-  double rest_peak = 0, rest_since = -1;            // the at-rest test
+  double rest_peak = 0, rest_since = -1;            // the at-rest test (RestDetector)
   double initial_toe = 0;    // runout is measured from it
 };
 

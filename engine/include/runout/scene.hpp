@@ -30,8 +30,10 @@ struct TimeSpec {
   double end = 1.0;              // [s]
   double output_interval = 0.1;  // [s]
   double courant = 0.2;
-  // The run also ends at rest: kinetic energy below rest_fraction of its
-  // peak for rest_duration seconds. rest_fraction = 0 switches it off.
+  // The run also ends at rest: the kinetic energy of the slide's bulk
+  // motion (the larger of its toe's speed and its mean velocity's, squared)
+  // below rest_fraction of its peak for rest_duration seconds.
+  // rest_fraction = 0 switches it off.
   double rest_fraction = 0.0;
   double rest_duration = 1.0;    // [s]
 };
