@@ -7,7 +7,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "cli_runner.hpp"
@@ -400,4 +402,111 @@ TEST(StudyCommand, SlopeAngleIsRefusedOnAPolylineBase) {
   EXPECT_NE(r.output.find("--slope-angle: the scene's [base] is a polyline"), std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(out / "study.csv"));
+}
+
+// ---- scene settings, samples, resuming and collecting ----
+
+namespace {
+
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST(StudyCommand, SetSweepsASceneKeyAndAResumedStudyRerunsNothing) {
+  using cli_runner::run_cli;
+  const fs::path out = fs::temp_directory_path() / "runout_test_study_set";
+  fs::remove_all(out);
+  const std::string args = "study " + strong_clay_block() +
+                           " --cells 1 --ppc 1 --set base.shear_strength=600,1200 --end 1.5"
+                           " --times 1 --jobs 2 --out " + out.string();
+  const cli_runner::Result r = run_cli(args);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::vector<std::string> header;
+  const Table rows = read_csv(out / "study.csv", header);
+  ASSERT_EQ(rows.size(), 2u);
+  std::map<std::string, double> runout;
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("status"), "ok") << row.at("note");
+    // The row's scene is written and holds the row's value.
+    const Scene s = load_scene_file((out / row.at("scene")).string());
+    EXPECT_EQ(s.base.shear_strength, std::stod(row.at("base.shear_strength")));
+    runout[row.at("base.shear_strength")] = std::stod(row.at("runout_end"));
+    // Each point is its own reference: no error against the other value.
+    EXPECT_EQ(row.at("reference"), row.at("id"));
+  }
+  // The weaker interface lets the block go further: a = g sin 10 - tau / (rho H).
+  EXPECT_GT(runout.at("600"), runout.at("1200"));
+  // The mechanism rule: the block kept its shape; at 600 Pa it moved more
+  // than a tenth of its length (1.9 m of 10 m), at 1200 Pa less (0.8 m).
+  EXPECT_EQ(rows[0].at("mechanism"), "block sliding");
+  EXPECT_EQ(rows[1].at("mechanism"), "undetermined");
+  const std::string csv = text_of(out / "study.csv");
+
+  // Again: every run is done, none is run, the CSV is the same.
+  const auto summary_time = fs::last_write_time(out / "runs" / rows[0].at("id") / "summary.json");
+  const cli_runner::Result again = run_cli(args);
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("2 done before, 0 to run"), std::string::npos) << again.output;
+  EXPECT_EQ(fs::last_write_time(out / "runs" / rows[0].at("id") / "summary.json"), summary_time);
+  EXPECT_EQ(text_of(out / "study.csv"), csv);
+
+  // --collect gathers the same CSV from the folder alone; a run whose
+  // summary is gone is a row that says so.
+  const cli_runner::Result collected = run_cli("study --collect " + out.string());
+  ASSERT_EQ(collected.code, 0) << collected.output;
+  EXPECT_EQ(text_of(out / "study.csv"), csv);
+  fs::remove(out / "runs" / rows[1].at("id") / "summary.json");
+  EXPECT_EQ(run_cli("study --collect " + out.string()).code, 70);
+  std::vector<std::string> after_header;
+  const Table after = read_csv(out / "study.csv", after_header);
+  EXPECT_EQ(after[1].at("status"), "error");
+  EXPECT_NE(after[1].at("note").find("no finished summary.json"), std::string::npos);
+}
+
+TEST(StudyCommand, AKeyTheSceneRefusesStopsTheStudyBeforeAnyRun) {
+  const fs::path out = fs::temp_directory_path() / "runout_test_study_bad_key";
+  fs::remove_all(out);
+  for (const std::string& option :
+       {std::string("--set material.clay.su0=2000,-1"), std::string("--set base.friction_angle=3"),
+        std::string("--vary 'material.clay.su0=normal(2000,2000)' --sample 64"),
+        std::string("--vary 'material.clay.su0=normal(2000,-1)' --sample 4")}) {
+    const cli_runner::Result r = cli_runner::run_cli("study " + strong_clay_block() + " --cells 1 " +
+                                                     option + " --out " + out.string());
+    EXPECT_EQ(r.code, 65) << option << "\n" << r.output;
+    const std::size_t from = option.find_first_not_of(" '", option.find(' '));
+    const std::string key = option.substr(from, option.find('=') - from);
+    EXPECT_NE(r.output.find(key), std::string::npos) << option << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out)) << option;
+  }
+}
+
+TEST(StudyCommand, SamplesFollowTheDistributionAndTheSeed) {
+  using cli_runner::run_cli;
+  const fs::path out = fs::temp_directory_path() / "runout_test_study_sample";
+  fs::remove_all(out);
+  const std::string args = "study " + strong_clay_block() +
+                           " --cells 1 --ppc 1 --end 1 --vary 'base.shear_strength=uniform(400,1200)'"
+                           " --sample 4 --seed 11 --jobs 2 --out ";
+  ASSERT_EQ(run_cli(args + (out / "a").string()).code, 0);
+  std::vector<std::string> header;
+  const Table a = read_csv(out / "a" / "study.csv", header);
+  ASSERT_EQ(a.size(), 4u);
+  std::set<int> quarters;
+  for (const auto& row : a) {
+    const double tau = std::stod(row.at("base.shear_strength"));
+    EXPECT_GT(tau, 400.0);
+    EXPECT_LT(tau, 1200.0);
+    quarters.insert(static_cast<int>((tau - 400.0) / 200.0));  // Latin hypercube: one per quarter
+    EXPECT_EQ(row.at("status"), "ok") << row.at("note");
+  }
+  EXPECT_EQ(quarters.size(), 4u);
+  // The same seed draws the same values (a fresh study, not a resumed one).
+  ASSERT_EQ(run_cli(args + (out / "b").string()).code, 0);
+  std::vector<std::string> b_header;
+  const Table b = read_csv(out / "b" / "study.csv", b_header);
+  for (std::size_t k = 0; k < a.size(); ++k)
+    EXPECT_EQ(a[k].at("base.shear_strength"), b[k].at("base.shear_strength"));
 }

@@ -1,12 +1,10 @@
 #include "study_command.hpp"
 
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,35 +13,42 @@
 #include <iterator>
 #include <limits>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <thread>
 
 #include "runout/atomic_file.hpp"
 #include "runout/device_info.hpp"
+#include "runout/memory_estimate.hpp"
+#include "runout/run_summary_file.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/study.hpp"
+#include "study_parameters.hpp"
+#include "study_slurm.hpp"
 
 namespace runout {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// One scene of the study: the domain's far end and the slope angle
-// (--domain-x-max, --slope-angle), and the study's copy of it that the
-// children read.
+// The study's own arguments, kept beside its runs for `--collect DIR`.
+constexpr const char* kArgsFile = "study.args";
+
+// One scene of the study: a point of the scene settings, the domain's far
+// end and the slope angle (--domain-x-max, --slope-angle), and the study's
+// copy of it that the children read.
 struct Variant {
   Scene scene;
   std::string file;
+  std::size_t point = 0;               // index into StudyParameters::points
+  std::vector<SceneSetting> settings;  // that point's values
   double domain_x_max = 0;
   std::optional<double> slope_angle;  // empty: the scene's own gravity
   std::optional<study::RigidBlock> block;  // --reference analytic-block: on this slope
 
   // The runs of one variant are measured against each other.
   bool same_place(const Variant& o) const {
-    return domain_x_max == o.domain_x_max && slope_angle == o.slope_angle;
+    return point == o.point && domain_x_max == o.domain_x_max && slope_angle == o.slope_angle;
   }
 };
 
@@ -54,16 +59,17 @@ struct RunSpec {
   int ppc = 0;                             // 0 for the depth-averaged model
   const Variant* variant = nullptr;
   std::string skip;                        // why it is not run; empty: it runs
+  std::string scene_hash;                  // of the scene the run resolves
 };
 
-// What a finished child left: its exit, its cost, and what its log says.
+// What a run's summary.json says, with its cost.
 struct RunResult {
   std::string status = "skipped", note;
-  double wall = kNaN, peak_mib = kNaN, end_time = kNaN;
+  double wall = kNaN, peak_mib = kNaN, end_time = kNaN, stop_time = kNaN;
   long particles = 0, steps = 0;
-  bool at_rest = false;
+  std::string mechanism;
   study::Metrics metrics;
-  bool measured = false;  // history.csv read
+  bool measured = false;  // summary.json read
 };
 
 std::string format(double v, const char* fmt = "%.6g") {
@@ -73,10 +79,12 @@ std::string format(double v, const char* fmt = "%.6g") {
   return buf;
 }
 
-// What tells a variant's runs and files apart: "_x<far end>" when the
-// study has several domains, "_a<angle>" when it sets the slope.
-std::string variant_suffix(const StudyArgs& a, const Variant& v) {
+// What tells a variant's runs and files apart: "_p<point>" when the study
+// sets or samples scene keys, "_x<far end>" when it has several domains,
+// "_a<angle>" when it sets the slope.
+std::string variant_suffix(const StudyArgs& a, std::size_t points, const Variant& v) {
   std::string suffix;
+  if (points > 1) suffix += "_p" + std::to_string(v.point);
   if (a.domain_x_max.size() > 1) suffix += "_x" + format(v.domain_x_max);
   if (v.slope_angle) suffix += "_a" + format(*v.slope_angle);
   return suffix;
@@ -90,37 +98,56 @@ std::string run_id(const RunSpec& r, const std::string& suffix) {
   return id + suffix;
 }
 
-// The scene as the study runs it (--end applied), once per far end of the
-// domain and slope angle, with its rigid block when that is the reference.
-// Throws SceneError for a slope or a reference the scene cannot take,
-// before anything is written.
-std::vector<Variant> variants(const StudyArgs& a, const Scene& base) {
-  std::vector<double> ends = a.domain_x_max;
-  if (ends.empty()) ends.push_back(base.grid.max.x());
-  std::vector<std::optional<double>> angles(a.slope_angles.begin(), a.slope_angles.end());
-  if (angles.empty()) angles.emplace_back();
+// The scene as the study runs it, once per point of the scene settings,
+// far end of the domain and slope angle (--end applied), with its rigid
+// block when that is the reference. Throws SceneError for a setting, a
+// slope or a reference the scene cannot take, before anything is written.
+std::vector<Variant> variants(const StudyArgs& a, const SceneSource& base,
+                              const StudyParameters& params) {
   std::vector<Variant> out;
-  for (double x : ends)
-    for (const std::optional<double>& angle : angles) {
-      Variant v{base, "", x, angle, std::nullopt};
-      v.scene.grid.max.x() = x;
-      if (angle) study::set_slope_angle(v.scene, *angle);
-      if (a.reference == "analytic-block") v.block = study::rigid_block(v.scene);
-      out.push_back(std::move(v));
-    }
+  for (std::size_t p = 0; p < params.points.size(); ++p) {
+    Scene scene = scene_with_settings(base.text, base.name, params.points[p]);
+    apply_overrides(scene, std::nullopt, std::nullopt, a.end);
+    std::vector<double> ends = a.domain_x_max;
+    if (ends.empty()) ends.push_back(scene.grid.max.x());
+    std::vector<std::optional<double>> angles(a.slope_angles.begin(), a.slope_angles.end());
+    if (angles.empty()) angles.emplace_back();
+    for (double x : ends)
+      for (const std::optional<double>& angle : angles) {
+        Variant v{scene, "", p, params.points[p], x, angle, std::nullopt};
+        v.scene.grid.max.x() = x;
+        if (angle) study::set_slope_angle(v.scene, *angle);
+        if (a.reference == "analytic-block") v.block = study::rigid_block(v.scene);
+        out.push_back(std::move(v));
+      }
+  }
   return out;
 }
 
 // Each variant's scene written beside the runs, so that every child reads
 // the same file.
-void write_scenes(const StudyArgs& a, std::vector<Variant>& variants, const fs::path& dir) {
+void write_scenes(const StudyArgs& a, std::size_t points, std::vector<Variant>& variants,
+                  const fs::path& dir) {
   for (Variant& v : variants) {
-    v.file = (dir / ("scene" + variant_suffix(a, v) + ".toml")).string();
+    v.file = (dir / ("scene" + variant_suffix(a, points, v) + ".toml")).string();
     write_file_atomically(v.file, to_toml(v.scene));
   }
 }
 
-std::vector<RunSpec> expand_matrix(const StudyArgs& a, const std::vector<Variant>& variants) {
+// The scene the child resolves from child_args, as `runout run` applies
+// its options (main.cpp's load): the hash its summary.json records, and
+// its size.
+Scene child_scene(const RunSpec& r) {
+  Scene s = load_scene_file(r.variant->file);
+  const bool mpm = r.method == "mpm";
+  apply_overrides(s, r.cell, mpm ? std::optional<int>(r.ppc) : std::nullopt);
+  apply_method_overrides(s, r.method, std::nullopt, std::nullopt);
+  apply_shape_override(s, mpm ? std::optional<std::string>(r.shape) : std::nullopt);
+  return s;
+}
+
+std::vector<RunSpec> expand_matrix(const StudyArgs& a, std::size_t points,
+                                   const std::vector<Variant>& variants) {
   std::string no_cuda;
   const bool cuda = !cuda_devices(no_cuda).empty();
   std::vector<RunSpec> runs;
@@ -128,7 +155,7 @@ std::vector<RunSpec> expand_matrix(const StudyArgs& a, const std::vector<Variant
     for (const std::string& method : a.methods)
       for (const std::string& backend : a.backends)
         for (double cell : a.cells) {
-          RunSpec r{"", method, backend, "", cell, 0, &v, ""};
+          RunSpec r{"", method, backend, "", cell, 0, &v, "", ""};
           if (method == "dam") {  // no shape functions, no particles: one run per cell size
             if (backend == "cuda") r.skip = "the depth-averaged model runs on the CPU only";
             runs.push_back(r);
@@ -142,12 +169,17 @@ std::vector<RunSpec> expand_matrix(const StudyArgs& a, const std::vector<Variant
               runs.push_back(r);
             }
         }
-  for (RunSpec& r : runs) r.id = run_id(r, variant_suffix(a, *r.variant));
+  for (RunSpec& r : runs) {
+    r.id = run_id(r, variant_suffix(a, points, *r.variant));
+    if (r.skip.empty()) r.scene_hash = scene_hash_text(to_toml(child_scene(r)));
+  }
   return runs;
 }
 
+// `runout run` of one combination; argv[0] is this binary.
 std::vector<std::string> child_args(const RunSpec& r, const fs::path& run_dir, int threads) {
-  std::vector<std::string> v{"runout", "run", r.variant->file, "--method", r.method,
+  std::vector<std::string> v{fs::read_symlink("/proc/self/exe").string(), "run",
+                             r.variant->file, "--method", r.method,
                              "--backend", r.backend, "--cell", format(r.cell, "%.17g"),
                              "--out", run_dir.string(), "--quiet",
                              "--threads", std::to_string(threads)};
@@ -155,6 +187,17 @@ std::vector<std::string> child_args(const RunSpec& r, const fs::path& run_dir, i
     v.insert(v.end(), {"--shape", r.shape, "--ppc", std::to_string(r.ppc)});
   }
   return v;
+}
+
+// A run whose folder holds a finished summary of this very scene: done,
+// not run again when the study is resumed.
+bool finished_run(const fs::path& dir, const std::string& scene_hash) {
+  try {
+    const RunRecord rec = read_run_record(dir.string());
+    return rec.finished() && rec.scene_hash == scene_hash;
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 // fork + exec of this same binary, its output into run.log.
@@ -169,97 +212,170 @@ pid_t spawn(const std::vector<std::string>& args, const fs::path& log) {
     dup2(fd, STDOUT_FILENO);
     dup2(fd, STDERR_FILENO);
   }
-  execv("/proc/self/exe", argv.data());
+  execv(argv[0], argv.data());
   std::perror("runout study: exec");
   _exit(127);
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// The child's summary line ("N particles, S steps to t = T s", or
-// "N elements, ..." for the depth-averaged model), whether it came to
-// rest, and its last "runout:" message when it did not finish.
-void read_log(const std::string& log, RunResult& r) {
-  static const std::regex summary(R"((\d+) (?:particles|elements), (\d+) steps to t = (\S+) s)");
-  std::smatch m;
-  if (std::regex_search(log, m, summary)) {
-    r.particles = std::stol(m[1]);
-    r.steps = std::stol(m[2]);
-    r.end_time = std::stod(m[3]);
-  }
-  r.at_rest = log.find("came to rest") != std::string::npos;
-  std::istringstream in(log);
+// The last "runout: " line of a child's log: why it wrote no summary.
+std::string log_reason(const fs::path& log) {
+  std::ifstream in(log);
+  std::string reason;
   for (std::string line; std::getline(in, line);)
-    if (line.rfind("runout: ", 0) == 0 && r.note.empty()) r.note = line.substr(8);
+    if (line.rfind("runout: ", 0) == 0) reason = line.substr(8);
+  return reason;
 }
 
-RunResult finish(const fs::path& dir, int status, const rusage& usage,
-                 double wall, const std::vector<double>& times) {
+// The row of a run from its summary.json, with its toe runout at the
+// study's times from its history.csv; `no_summary` says why when there is
+// none.
+RunResult read_result(const fs::path& dir, const std::string& scene_hash,
+                      const std::vector<double>& times, const std::string& no_summary) {
   RunResult r;
-  r.wall = wall;
-  r.peak_mib = usage.ru_maxrss / 1024.0;  // Linux: ru_maxrss in KiB
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.status = code == 0 ? "ok" : code == 70 ? "failed" : "error";
-  read_log(read_text(dir / "run.log"), r);
-  if (code != 0 && r.note.empty()) r.note = "exit " + std::to_string(code);
+  RunRecord rec;
+  try {
+    rec = read_run_record(dir.string());
+  } catch (const std::exception& e) {
+    r.status = "error";
+    r.note = no_summary.empty() ? e.what() : no_summary;
+    return r;
+  }
+  if (rec.scene_hash != scene_hash) {
+    r.status = "error";
+    r.note = "its summary.json is of another scene (hash " + rec.scene_hash + ")";
+    return r;
+  }
+  r.status = rec.status == "blown_up" ? "failed" : rec.finished() ? "ok" : "error";
+  r.note = rec.note;
+  r.wall = rec.wall_seconds;
+  r.peak_mib = rec.peak_memory_mib;
+  r.end_time = rec.end_time;
+  r.stop_time = rec.stop_time;
+  r.particles = rec.particles;
+  r.steps = rec.steps;
+  r.mechanism = rec.mechanism;
+  r.metrics.runout_end = rec.runout;
+  r.metrics.peak_toe_velocity = rec.peak_toe_velocity;
+  r.metrics.final_length = rec.final_length;
+  r.measured = true;
   try {
     const study::History h = study::read_history((dir / "history.csv").string());
-    r.metrics = study::run_metrics(h, times, r.at_rest);
-    r.measured = !h.time.empty();
-    if (r.measured && !std::isfinite(r.end_time)) r.end_time = h.time.back();
+    r.metrics.runout_at = study::run_metrics(h, times, rec.status == "at_rest").runout_at;
   } catch (const std::exception& e) {
+    r.metrics.runout_at.assign(times.size(), kNaN);
     if (r.note.empty()) r.note = e.what();
   }
   return r;
 }
 
-// Runs every combination that applies, at most `jobs` at a time, and reaps
-// each child with wait4 so its peak resident memory is its own.
-std::vector<RunResult> run_all(const std::vector<RunSpec>& runs, const StudyArgs& a,
-                               const fs::path& runs_dir, int jobs) {
-  std::vector<RunResult> results(runs.size());
-  struct Running {
-    std::size_t index;
-    Clock::time_point start;
-  };
-  std::map<pid_t, Running> running;
-  std::size_t next = 0, done = 0, total = 0;
-  for (const RunSpec& r : runs) total += r.skip.empty();
+// Runs the combinations `todo` here, at most `jobs` at a time; each
+// child's exit, where it wrote no summary, into `why`.
+void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>& runs,
+               const StudyArgs& a, const fs::path& runs_dir, int jobs,
+               std::vector<std::string>& why) {
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0, done = 0;
   const auto launch_more = [&] {
-    for (; next < runs.size() && static_cast<int>(running.size()) < jobs; ++next) {
-      if (!runs[next].skip.empty()) continue;
-      const fs::path dir = runs_dir / runs[next].id;
+    for (; next < todo.size() && static_cast<int>(running.size()) < jobs; ++next) {
+      const RunSpec& r = runs[todo[next]];
+      const fs::path dir = runs_dir / r.id;
       fs::create_directories(dir);
-      const pid_t pid = spawn(child_args(runs[next], dir, a.threads), dir / "run.log");
+      const pid_t pid = spawn(child_args(r, dir, a.threads), dir / "run.log");
       if (pid < 0) throw std::runtime_error("cannot start a run: fork failed");
-      running[pid] = {next, Clock::now()};
+      running[pid] = todo[next];
     }
   };
   for (launch_more(); !running.empty(); launch_more()) {
     int status = 0;
-    rusage usage{};
-    const pid_t pid = wait4(-1, &status, 0, &usage);
-    if (pid < 0) throw std::runtime_error("lost the study's runs: wait4 failed");
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0) throw std::runtime_error("lost the study's runs: waitpid failed");
     const auto it = running.find(pid);
     if (it == running.end()) continue;
-    const std::size_t k = it->second.index;
-    const double wall = std::chrono::duration<double>(Clock::now() - it->second.start).count();
-    results[k] = finish(runs_dir / runs[k].id, status, usage, wall, a.times);
+    const std::size_t k = it->second;
     running.erase(it);
-    std::fprintf(stderr, "runout study: [%zu/%zu] %s %s (%.3g s)\n", ++done, total,
-                 runs[k].id.c_str(), results[k].status.c_str(), wall);
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    const std::string reason = log_reason(runs_dir / runs[k].id / "run.log");
+    why[k] = "exit " + std::to_string(code) + (reason.empty() ? "" : ": " + reason);
+    std::fprintf(stderr, "runout study: [%zu/%zu] %s exit %d\n", ++done, todo.size(),
+                 runs[k].id.c_str(), code);
   }
-  for (std::size_t k = 0; k < runs.size(); ++k)
-    if (!runs[k].skip.empty()) results[k].note = runs[k].skip;
-  return results;
 }
 
-// The finest successful MPM run to measure row k against: same domain and
-// slope, the same shape where there is one, the CPU before CUDA, then the
-// smallest cell and the most particles per cell. -1 when there is none.
+// The Slurm request for these runs: the largest one's memory (the engine's
+// estimate, doubled for what it leaves out, plus the process) and time
+// (the cost estimate's steps, doubled as the step falls while the slide
+// speeds up, at a tenth of the throughput docs/study.md measures on one
+// thread), with a floor for start-up and queueing of the output.
+SlurmRequest slurm_request(const std::vector<std::size_t>& todo, const std::vector<RunSpec>& runs,
+                           const StudyArgs& a) {
+  constexpr double kMiB = 1024.0 * 1024.0, kBaseMiB = 64.0, kMinMinutes = 5.0;
+  constexpr double kParticleStepsPerSecond = 2e5;  // per thread
+  SlurmRequest req;
+  req.cpus = a.threads;
+  req.max_resubmits = a.max_resubmits;
+  req.sbatch_args = a.sbatch_args;
+  req.minutes = kMinMinutes;
+  for (std::size_t k : todo) {
+    const Scene s = child_scene(runs[k]);
+    const MemoryEstimate m = estimate_memory(s, s.method);
+    req.memory_mib = std::max(req.memory_mib, kBaseMiB + 2.0 * m.bytes() / kMiB);
+    const double seconds = 2.0 * estimate_cost(s, s.method).steps * m.items /
+                           (kParticleStepsPerSecond * a.threads);
+    req.minutes = std::max(req.minutes, kMinMinutes + seconds / 60.0);
+  }
+  return req;
+}
+
+// Runs what is not done yet with the study's launcher; `why` gets, per
+// run, what to say when it leaves no summary. Returns 0, or 69 when the
+// Slurm launcher cannot submit.
+int launch(const std::vector<RunSpec>& runs, const StudyArgs& a, const fs::path& dir, int jobs,
+           std::vector<std::string>& why) {
+  std::vector<std::size_t> todo;
+  std::size_t done = 0;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    if (!runs[k].skip.empty()) continue;
+    if (finished_run(dir / "runs" / runs[k].id, runs[k].scene_hash))
+      ++done;
+    else
+      todo.push_back(k);
+  }
+  std::fprintf(stderr, "runout study: %zu runs, %zu done before, %zu to run%s\n", runs.size(),
+               done, todo.size(), a.collect.empty() ? "" : " (--collect: none run)");
+  if (!a.collect.empty() || todo.empty()) {
+    for (std::size_t k : todo) why[k] = "no finished summary.json: not run or not to its end";
+    return 0;
+  }
+  if (a.launcher == "local") {
+    run_local(todo, runs, a, dir / "runs", jobs, why);
+    return 0;
+  }
+  std::vector<SlurmElement> elements;
+  for (std::size_t k : todo) {
+    const fs::path run_dir = dir / "runs" / runs[k].id;
+    fs::create_directories(run_dir);
+    fs::remove(run_dir / kSummaryFile);  // an unfinished run's: not this submission's result
+    elements.push_back({child_args(runs[k], fs::absolute(run_dir), a.threads), run_dir / "run.log"});
+  }
+  try {
+    const int submissions = run_on_slurm(
+        dir, elements, slurm_request(todo, runs, a),
+        [&](std::size_t e) { return finished_run(dir / "runs" / runs[todo[e]].id,
+                                                  runs[todo[e]].scene_hash); });
+    for (std::size_t k : todo)
+      why[k] = "no finished summary.json after " + std::to_string(submissions) +
+               " submission(s); see " + (dir / "slurm").string();
+  } catch (const std::runtime_error& e) {
+    std::cerr << "runout study: --launcher slurm: " << e.what() << "\n";
+    return 69;
+  }
+  return 0;
+}
+
+// The finest successful MPM run to measure row k against: same scene
+// point, domain and slope, the same shape where there is one, the CPU
+// before CUDA, then the smallest cell and the most particles per cell. -1
+// when there is none.
 int finest_reference(const std::vector<RunSpec>& runs, const std::vector<RunResult>& res,
                      std::size_t k) {
   int best = -1;
@@ -276,10 +392,11 @@ int finest_reference(const std::vector<RunSpec>& runs, const std::vector<RunResu
   return best;
 }
 
-std::string csv_header(const std::vector<double>& times) {
-  std::string h =
-      "id,method,backend,shape,cell,ppc,domain_x_max,slope_angle,status,note,particles,steps,end_time,"
-      "wall_s,particle_steps_per_s,peak_memory_mib";
+std::string csv_header(const std::vector<double>& times, const std::vector<std::string>& keys) {
+  std::string h = "id,method,backend,shape,cell,ppc,domain_x_max,slope_angle";
+  for (const std::string& key : keys) h += "," + key;
+  h += ",scene,status,note,particles,steps,end_time,stop_time,mechanism,"
+       "wall_s,particle_steps_per_s,peak_memory_mib";
   const auto metric_names = [&](const std::string& prefix) {
     for (double t : times) h += "," + prefix + "runout_t" + format(t);
     h += "," + prefix + "runout_end," + prefix + "peak_toe_velocity," + prefix + "final_length";
@@ -303,10 +420,13 @@ std::string csv_row(const RunSpec& s, const RunResult& r, const std::vector<doub
   const double rate = r.particles * double(r.steps) / r.wall;
   o << s.id << ',' << s.method << ',' << s.backend << ',' << s.shape << ',' << format(s.cell)
     << ',' << (s.ppc > 0 ? std::to_string(s.ppc) : "") << ',' << format(s.variant->domain_x_max)
-    << ',' << (s.variant->slope_angle ? format(*s.variant->slope_angle) : "") << ',' << r.status << ',' << csv_text(r.note) << ',' << (r.particles ? std::to_string(r.particles) : "")
-    << ',' << (r.steps ? std::to_string(r.steps) : "") << ',' << format(r.end_time) << ','
-    << format(r.wall, "%.4g") << ',' << (r.steps ? format(rate, "%.4g") : "") << ','
-    << format(r.peak_mib, "%.4g");
+    << ',' << (s.variant->slope_angle ? format(*s.variant->slope_angle) : "");
+  for (const SceneSetting& setting : s.variant->settings) o << ',' << csv_text(setting.value);
+  o << ',' << fs::path(s.variant->file).filename().string() << ',' << r.status << ','
+    << csv_text(r.note) << ',' << (r.particles ? std::to_string(r.particles) : "") << ','
+    << (r.steps ? std::to_string(r.steps) : "") << ',' << format(r.end_time) << ','
+    << format(r.stop_time) << ',' << csv_text(r.mechanism) << ',' << format(r.wall, "%.4g")
+    << ',' << (r.steps ? format(rate, "%.4g") : "") << ',' << format(r.peak_mib, "%.4g");
   const study::Metrics& m = r.metrics;
   if (r.measured) {
     for (double v : m.runout_at) o << ',' << format(v);
@@ -320,12 +440,63 @@ std::string csv_row(const RunSpec& s, const RunResult& r, const std::vector<doub
   return o.str();
 }
 
+// The study's arguments as the command line that gives them back, the
+// scene's path absolute: what `--collect DIR` parses again.
+std::vector<std::string> args_words(const StudyArgs& a) {
+  std::vector<std::string> w;
+  if (!a.scene.empty()) w.push_back(fs::absolute(a.scene).string());
+  const auto list = [&](const char* option, const auto& values, auto text) {
+    if (values.empty()) return;
+    std::string joined;
+    for (const auto& v : values) joined += (joined.empty() ? "" : ",") + text(v);
+    w.insert(w.end(), {option, joined});
+  };
+  const auto number = [](double v) { return format(v, "%.17g"); };
+  const auto word = [](const std::string& v) { return v; };
+  list("--cells", a.cells, number);
+  list("--ppc", a.ppc, [](int v) { return std::to_string(v); });
+  list("--shape", a.shapes, word);
+  list("--method", a.methods, word);
+  list("--backend", a.backends, word);
+  list("--domain-x-max", a.domain_x_max, number);
+  list("--slope-angle", a.slope_angles, number);
+  list("--times", a.times, number);
+  if (a.end) w.insert(w.end(), {"--end", number(*a.end)});
+  w.insert(w.end(), {"--reference", a.reference, "--threads", std::to_string(a.threads)});
+  for (const std::string& s : a.settings) w.insert(w.end(), {"--set", s});
+  for (const std::string& v : a.vary) w.insert(w.end(), {"--vary", v});
+  if (a.samples > 0)
+    w.insert(w.end(), {"--sample", std::to_string(a.samples), "--seed", std::to_string(a.seed),
+                       "--design", a.design});
+  return w;
+}
+
+// The arguments of the study in `dir`, from its study.args.
+StudyArgs collected_args(const std::string& dir) {
+  const fs::path path = fs::path(dir) / kArgsFile;
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("--collect: no " + path.string() + ": not a study folder");
+  std::vector<std::string> words;
+  for (std::string line; std::getline(in, line);) words.push_back(line);
+  CLI::App app;
+  StudyArgs a;
+  CLI::App* cmd = nullptr;
+  add_study_command(app, a, cmd);
+  words.insert(words.begin(), "study");
+  std::reverse(words.begin(), words.end());  // CLI11 takes them last first
+  app.parse(words);
+  a.out = dir;
+  a.collect = dir;
+  return a;
+}
+
 }  // namespace
 
 void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
   cmd = app.add_subcommand("study",
-                           "Run a matrix of resolutions and methods; one CSV row per run with its "
-                           "cost and its error against the finest run or the analytic answer");
+                           "Run a matrix of scene settings or samples, resolutions and methods, "
+                           "here or on Slurm; one CSV row per run with its result, its cost and "
+                           "its error against the finest run or the analytic answer");
   cmd->add_option("scene", a.scene, "Scene file (TOML); the built-in default scene if omitted");
   cmd->add_option("--cells", a.cells, "Cell sizes h [m]")->delimiter(',')->check(CLI::PositiveNumber);
   cmd->add_option("--ppc", a.ppc, "Particles per cell per direction")->delimiter(',');
@@ -347,30 +518,78 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
   cmd->add_option("--reference", a.reference,
                   "finest (the finest MPM run) or analytic-block (a rigid block on the base)")
       ->check(CLI::IsMember({"finest", "analytic-block"}));
+  cmd->add_option("--set", a.settings,
+                  "KEY=V1,V2,...: a scene key by its table path (material.clay.su0), one run "
+                  "per value, crossed with the other keys (repeatable)");
+  cmd->add_option("--vary", a.vary,
+                  "KEY=DIST: draw the key from uniform(lo,hi), normal(mean,sd[,lo,hi]) or "
+                  "lognormal(median,sigma[,lo,hi]) (repeatable; with --sample)");
+  cmd->add_option("--sample", a.samples, "Samples of the --vary keys")->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", a.seed, "Seed of the samples");
+  cmd->add_option("--design", a.design, "lhs (Latin hypercube) or mc (Monte Carlo)")
+      ->check(CLI::IsMember({"lhs", "mc"}));
+  cmd->add_option("--launcher", a.launcher, "local (here, --jobs at once) or slurm (a job array)")
+      ->check(CLI::IsMember({"local", "slurm"}));
+  cmd->add_option("--max-resubmits", a.max_resubmits,
+                  "Slurm: submit unfinished elements again at most this many times")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--sbatch-arg", a.sbatch_args,
+                  "Slurm: an argument for sbatch, e.g. --sbatch-arg=--partition=long (repeatable)");
+  cmd->add_option("--collect", a.collect,
+                  "The CSV of the study in DIR from its runs' summaries; nothing is run");
   cmd->add_option("-o,--out", a.out, "Study folder (default out/study/<scene name>)");
   cmd->add_option("-j,--jobs", a.jobs, "Runs at once (default: cores / threads)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("-t,--threads", a.threads, "OpenMP threads per run")->check(CLI::PositiveNumber);
 }
 
-int run_study(const StudyArgs& a) {
-  Scene scene = a.scene.empty() ? parse_scene(default_scene_toml(), "default.toml")
-                                : load_scene_file(a.scene);
-  apply_overrides(scene, std::nullopt, std::nullopt, a.end);
+int run_study(const StudyArgs& given) {
+  StudyArgs a;
+  try {
+    a = given.collect.empty() ? given : collected_args(given.collect);
+  } catch (const std::exception& e) {  // CLI11's parse errors are std::exceptions too
+    std::cerr << "runout study: " << e.what() << "\n";
+    return 66;
+  }
+  const SceneSource base = [&]() -> SceneSource {
+    if (a.scene.empty()) return {"default.toml", std::string(default_scene_toml())};
+    load_scene_file(a.scene);  // the file's own refusals (missing, unreadable) first
+    std::ifstream in(a.scene, std::ios::binary);
+    return {a.scene, {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}};
+  }();
+  const StudyParameters params =
+      study_parameters(a.settings, a.vary, a.samples, a.seed, a.design);
+  // Every point's scene parsed before anything is written or run.
+  std::vector<Variant> scenes = variants(a, base, params);
 
-  const fs::path dir = a.out.empty() ? fs::path("out/study") / scene.name : fs::path(a.out);
+  const fs::path dir = a.out.empty() ? fs::path("out/study") / scenes[0].scene.name : fs::path(a.out);
   const int cores = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = a.jobs > 0 ? a.jobs : std::max(1, cores / a.threads);
-  std::vector<Variant> scenes = variants(a, scene);
   std::vector<RunSpec> runs;
+  std::vector<std::string> why;
   std::vector<RunResult> results;
   try {
     fs::create_directories(dir / "runs");
-    write_scenes(a, scenes, dir);
-    runs = expand_matrix(a, scenes);
-    std::fprintf(stderr, "runout study: %zu runs, %d at a time, %d thread(s) each, into %s\n",
-                 runs.size(), jobs, a.threads, dir.c_str());
-    results = run_all(runs, a, dir / "runs", jobs);
+    if (a.collect.empty()) {
+      std::string words;
+      for (const std::string& w : args_words(a)) words += w + "\n";
+      write_file_atomically((dir / kArgsFile).string(), words);
+    }
+    write_scenes(a, params.points.size(), scenes, dir);
+    runs = expand_matrix(a, params.points.size(), scenes);
+    why.resize(runs.size());
+    std::fprintf(stderr, "runout study: %d at a time, %d thread(s) each, into %s\n", jobs,
+                 a.threads, dir.c_str());
+    if (const int code = launch(runs, a, dir, jobs, why); code != 0) return code;
+    results.resize(runs.size());
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      if (runs[k].skip.empty())
+        results[k] = read_result(dir / "runs" / runs[k].id, runs[k].scene_hash, a.times, why[k]);
+      else
+        results[k].note = runs[k].skip;
+    }
+  } catch (const SceneError&) {
+    throw;  // main's exit code for a scene the study cannot take
   } catch (const std::exception& e) {
     std::cerr << "runout study: " << e.what() << "\n";
     return 73;
@@ -405,7 +624,8 @@ int run_study(const StudyArgs& a) {
   std::vector<double> order(n, kNaN);
   const auto series = [&](std::size_t k) {
     return std::make_tuple(runs[k].method, runs[k].backend, runs[k].shape, runs[k].ppc,
-                           runs[k].variant->domain_x_max, runs[k].variant->slope_angle);
+                           runs[k].variant->point, runs[k].variant->domain_x_max,
+                           runs[k].variant->slope_angle);
   };
   for (std::size_t k = 0; k < n; ++k) {
     std::vector<double> h, e;
@@ -417,7 +637,7 @@ int run_study(const StudyArgs& a) {
     order[k] = study::observed_order(h, e);
   }
 
-  std::string csv = csv_header(a.times);
+  std::string csv = csv_header(a.times, params.keys);
   bool all_ran = true;
   for (std::size_t k = 0; k < n; ++k) {
     all_ran = all_ran && (results[k].status == "ok" || results[k].status == "skipped");

@@ -1,10 +1,12 @@
 #pragma once
-// `runout study`: runs a matrix of `runout run` child processes (one per
-// combination of method, backend, shape, cell size, particles per cell,
-// domain length and slope angle), in parallel where cores allow, and writes one CSV row per
-// combination with its cost and its accuracy against a reference
-// (docs/study.md).
+// `runout study`: runs a matrix of `runout run` children (one per
+// combination of scene settings or samples, method, backend, shape, cell
+// size, particles per cell, domain length and slope angle), here in
+// parallel where cores allow or as a Slurm job array, and writes one CSV
+// row per combination from its summary.json, with its cost and its
+// accuracy against a reference (docs/study.md).
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,12 +26,23 @@ struct StudyArgs {
   std::string out;                   // default out/study/<scene name>
   int jobs = 0;                      // 0: cores / threads
   int threads = 1;                   // OpenMP threads per run
+  std::vector<std::string> settings;  // --set KEY=V1,V2,...
+  std::vector<std::string> vary;      // --vary KEY=DISTRIBUTION
+  int samples = 0;                    // --sample N
+  std::uint64_t seed = 1;
+  std::string design = "lhs";         // or "mc"
+  std::string launcher = "local";     // or "slurm"
+  int max_resubmits = 2;              // Slurm: submissions after the first
+  std::vector<std::string> sbatch_args;
+  std::string collect;                // --collect DIR: the CSV of a study's runs, none run
 };
 
 void add_study_command(CLI::App& app, StudyArgs& args, CLI::App*& command);
 
 // Exit codes as runout's (sysexits): 0 when every run that applies ran, 70
-// when one failed (its row says how), 73 when the study cannot be written.
+// when one failed (its row says how), 65 for a key, value or distribution
+// the scene refuses (nothing run), 69 when sbatch cannot be run, 73 when
+// the study cannot be written.
 int run_study(const StudyArgs& args);
 
 }  // namespace runout
