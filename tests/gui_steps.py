@@ -9,7 +9,12 @@ shell command:
 are shown in which view and how, the views) and saves screenshots of the
 render view: everything as the GUI shows it, then the particles alone, each
 overlay alone and nothing, with the same camera, so that the test can tell
-where each is drawn and whether it is covered. "finish" writes the record
+where each is drawn and whether it is covered. "sheet" (tag FILTER:PORT)
+shows one output of a Runout filter in a spreadsheet, as a user opens one,
+and records what the spreadsheet shows; "sheet-close" removes it. "frame"
+fits the camera to the render view, "style" does what docs/paraview.md has
+the user do after Apply (colours, exaggeration), "picture" saves the whole
+screen (docs/paraview.md's pictures). "finish" writes the record
 to CONFIG's result file and ends ParaView (its --exit does not end it after
 a test script with events in Debian's 5.11).
 """
@@ -91,6 +96,18 @@ def _representations():
     return rows
 
 
+def _axis_titles():
+    """{chart view's XML name: [left, bottom]}: the titles of the axes its
+    chart draws (the vtkAxis objects, not the view's properties alone)."""
+    from vtkmodules.vtkChartsCore import vtkAxis
+    titles = {}
+    for view in simple.GetViews():
+        if view.GetProperty("LeftAxisTitle") is not None:
+            chart = view.GetClientSideObject().GetChart()
+            titles[view.GetXMLName()] = [chart.GetAxis(vtkAxis.LEFT).GetTitle(),
+                                         chart.GetAxis(vtkAxis.BOTTOM).GetTitle()]
+    return titles
+
 
 def _shots(view, tag, folder):
     """Screenshots of the view as shown, then of each part alone."""
@@ -135,32 +152,174 @@ def _shots(view, tag, folder):
     return files, size
 
 
+# The spreadsheet the "sheet" steps show the filters' outputs in, and its
+# layout tab, kept across the shell commands until "sheet-close".
+if "RUNOUT_GUI_SHEET" not in globals():
+    RUNOUT_GUI_SHEET = {}
+# The attributes the spreadsheet's Attribute menu offers (vtkDataObject's
+# field associations), by the names the test reports.
+SHEET_ATTRIBUTES = {"points": 0, "cells": 1, "field": 2, "rows": 6}
+
+
+def _sheet(name, port):
+    """Shows output `port` of the filter `name` alone in a spreadsheet (in
+    a layout tab of its own, made by the first call; the Qt table paints it
+    once the shell returns to the event loop), and records what the
+    spreadsheet serves that table for each attribute: rows and visible
+    columns, and every value of the first row (read as the table reads
+    them). The output's own counts come with it, to compare."""
+    if not RUNOUT_GUI_SHEET:
+        layout = simple.CreateLayout("Runout spreadsheets")
+        sheet = simple.CreateView("SpreadSheetView")
+        simple.AssignViewToLayout(view=sheet, layout=layout, hint=0)
+        RUNOUT_GUI_SHEET.update(layout=layout, view=sheet)
+    sheet = RUNOUT_GUI_SHEET["view"]
+    for rep in sheet.Representations:
+        rep.Visibility = 0
+    source = _source(name)
+    simple.Show(simple.OutputPort(source, port), sheet)
+    info = source.GetDataInformation(port)
+    row = {"source": name, "port": port, "class": info.GetDataClassName(),
+           "counts": {"points": info.GetNumberOfPoints(), "cells": info.GetNumberOfCells(),
+                      "rows": info.GetNumberOfRows()},
+           "attributes": {}}
+    table = sheet.GetClientSideObject()
+    for attribute, association in SHEET_ATTRIBUTES.items():
+        sheet.FieldAssociation = association
+        simple.Render(sheet)
+        columns = [i for i in range(table.GetNumberOfColumns()) if table.GetColumnVisibility(i)]
+        rows = table.GetNumberOfRows()
+        first = [table.GetValue(0, i).ToString() for i in columns] if rows else []
+        row["attributes"][attribute] = {"rows": rows, "first": first,
+                                        "columns": [table.GetColumnName(i) for i in columns]}
+    sheet.FieldAssociation = SHEET_ATTRIBUTES["rows" if info.GetDataClassName() == "vtkTable"
+                                              else "points"]
+    simple.Render(sheet)
+    return row
+
+
+def _close_sheet(view):
+    """Removes the spreadsheet and its tab: the walk-through goes on with
+    the render view and the chart alone."""
+    simple.Delete(RUNOUT_GUI_SHEET["view"])
+    simple.RemoveLayout(RUNOUT_GUI_SHEET["layout"])
+    RUNOUT_GUI_SHEET.clear()
+    simple.SetActiveView(view)
+
+
+# The colours docs/paraview.md has the user give the overlays (its step 4):
+# (filter's XML name, port): RGB.
+# (filter's XML name, port): RGB, apart from the particles' blue to red.
+LINE_COLOURS = {("RunoutShearBands", 0): [1.0, 1.0, 0.0], ("RunoutHorstGraben", 0): [0.0, 0.0, 0.0],
+                ("RunoutMorphology", 0): [0.0, 0.8, 0.0]}
+
+
+def _style(view):
+    """What docs/paraview.md's step 4 has the user do after Apply: the
+    particles coloured by plastic_shear_strain, rescaled over all time
+    steps, with a scale bar; the shear bands, block outlines and profile in
+    solid colours of their own; heights exaggerated and the lines moved
+    towards the camera (as _shots does)."""
+    for key, display in _displays(view).items():
+        display.Scale = EXAGGERATION
+        display.Position = [0.0, 0.0, 0.0 if key in PARTICLES else 1.0]
+        if key in PARTICLES and display.Visibility:
+            simple.ColorBy(display, ("POINTS", "plastic_shear_strain"))
+            display.RescaleTransferFunctionToDataRangeOverTime()
+            display.SetScalarBarVisibility(view, True)
+        elif key in LINE_COLOURS:
+            if display.LookupTable:  # the profile's thickness: its bar goes with it
+                display.SetScalarBarVisibility(view, False)
+            display.ColorArrayName = ["POINTS", ""]  # Solid Color
+            display.AmbientColor = display.DiffuseColor = LINE_COLOURS[key]
+    simple.Render(view)
+
+
+def _save_screen(fbdir, path):
+    """The whole X screen as a PNG: Xvfb's framebuffer, which -fbdir
+    keeps as an XWD file (header big-endian; 32-bit pixels in the byte
+    order it states, 8 bits a channel for the 24-bit screen)."""
+    import struct
+
+    import numpy
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    with open(os.path.join(fbdir, "Xvfb_screen0"), "rb") as f:
+        data = f.read()
+    header = struct.unpack(">25I", data[:100])
+    size, width, height, byte_order, stride, colours = (header[0], header[4], header[5],
+                                                         header[7], header[12], header[19])
+    start = size + 12 * colours
+    pixels = numpy.frombuffer(data, numpy.uint8, stride * height, start).reshape(height, stride)
+    pixels = pixels[:, :4 * width].reshape(height, width, 4)
+    # Red is the third byte of a pixel in LSBFirst order, the second in MSBFirst.
+    rgb = pixels[..., [2, 1, 0]] if byte_order == 0 else pixels[..., [1, 2, 3]]
+    image = vtkImageData()
+    image.SetDimensions(width, height, 1)
+    # VTK's images start at the bottom row.
+    image.GetPointData().SetScalars(numpy_to_vtk(numpy.ascontiguousarray(
+        rgb[::-1].reshape(-1, 3)), deep=1))
+    writer = vtkPNGWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(image)
+    writer.Write()
+
+
+def _fit_camera(view, reader, config, size):
+    """The states' camera (states/runout_pv.py) on the run's particles,
+    framed for pictures of `size` (None: the view's own)."""
+    if config["states"] not in sys.path:
+        sys.path.insert(0, config["states"])
+    import runout_pv
+    runout_pv.fit_camera(view, reader.GetDataInformation().GetBounds(),
+                         exaggeration=EXAGGERATION, margin=1.2, size=size)
+
+
 def runout_gui_step(what, tag, config_path):
     with open(config_path) as f:
         config = json.load(f)
     record = RUNOUT_GUI_RECORD
     if what == "finish":
         try:
-            record["layout"] = os.path.join(config["folder"], "layout.png")
-            simple.SaveScreenshot(record["layout"], simple.GetLayout(), TransparentBackground=0)
             with open(config["result"], "w") as f:
                 json.dump(record, f, indent=1, default=str)
         finally:
             os._exit(0)  # the test reads the record, or its absence
     view = _render_view()
-    reader = _source("PVDReader")
     scene = simple.GetAnimationScene()
+    if what == "sheet":
+        name, port = tag.split(":")
+        shown = _sheet(name, int(port))
+        shown["time"] = float(scene.AnimationTime)
+        record.setdefault("sheets", []).append(shown)
+        return
+    if what == "sheet-close":
+        _close_sheet(view)
+        return
+    reader = _source("PVDReader")
+    if what == "frame":
+        # The render view two thirds of the layout (as a user drags the
+        # splitter: the slide is long and thin), the slide across it.
+        simple.GetLayout().SetSplitFraction(0, 2 / 3)
+        _fit_camera(view, reader, config, None)
+        simple.Render(view)
+        return
+    if what == "style":
+        _style(view)
+        return
+    if what == "picture":
+        # The screen as the event loop last painted it.
+        path = os.path.join(config["folder"], f"{tag}.png")
+        _save_screen(config["fbdir"], path)
+        record.setdefault("pictures", []).append(path)
+        return
     step = {"tag": tag, "time": float(scene.AnimationTime), "views": [v.GetXMLName() for v in
                                                                simple.GetViews()],
             "sources": sorted(s.GetXMLName() for s in simple.GetSources().values()),
-            "representations": _representations()}
+            "representations": _representations(), "axis_titles": _axis_titles()}
     if reader is not None:
-        # The states' camera (states/runout_pv.py), framed for the shots.
-        if config["states"] not in sys.path:
-            sys.path.insert(0, config["states"])
-        import runout_pv
-        runout_pv.fit_camera(view, reader.GetDataInformation().GetBounds(),
-                             exaggeration=EXAGGERATION, margin=1.2, size=SHOT)
+        _fit_camera(view, reader, config, SHOT)
         step["shots"], step["size"] = _shots(view, tag, config["folder"])
         step["counts"] = {}
         for name, port, part in OVERLAYS:

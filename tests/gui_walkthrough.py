@@ -11,10 +11,13 @@ screenshots of the render view.
 It fails on any error or warning ParaView prints, and unless
 - the GUI made one render view and one line chart, no spreadsheet;
 - the particles stay shown, block outlines are Wireframe, the Strain Grid
-  an Outline, the chart shows the history's lengths;
+  an Outline, the chart shows the history's lengths, its axes titled with
+  their units;
 - at t = 0, where the filters are applied, the screenshots show the
   particles with the profile over them, there are no bands or blocks, and
   nothing shown is coloured by a map of range zero;
+- at t = 0 each output of each Runout filter (empty bands and blocks,
+  one-row tables among them), shown in a spreadsheet, lists its rows;
 - at the last frame the screenshots show the particles and, over them, the
   shear bands, the block outlines and the profile: each drawn alone marks
   pixels, those pixels lie within the particles' picture, and in the
@@ -24,9 +27,10 @@ It fails on any error or warning ParaView prints, and unless
 
 Run by pvpython (for VTK's PNG reader and numpy):
   pvpython tests/gui_walkthrough.py SOURCE_DIR RUNOUT_CLI PLUGIN_DIR PARAVIEW [KEEP_DIR]
-KEEP_DIR keeps the screenshots (docs/paraview.md's pictures come from it)
-and the record, record.json, which `gui_walkthrough.py --check RECORD`
-checks again.
+KEEP_DIR keeps the screenshots, the pictures of the whole GUI that
+docs/paraview.md shows (gui_layout.png, gui_walkthrough.png: copy them to
+docs/images/ after a passing run) and the record, record.json, which
+`gui_walkthrough.py --check RECORD` checks again.
 Exits 77 (skipped) without xvfb-run or the paraview binary.
 """
 import json
@@ -38,12 +42,19 @@ import sys
 import tempfile
 import time
 
-XVFB = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24 -noreset"]
+# -fbdir: Xvfb keeps its screen in a file there, for the pictures of the
+# whole GUI.
+XVFB = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24 -noreset -fbdir {fbdir}"]
 # The overlays first: Runout Plastic Strain's particles take the run's place
 # (ParaView's default), the overlays must leave it shown. The history last:
 # its chart becomes the active view, where the others would not be shown.
 OVERLAY_FILTERS = ("RunoutShearBands", "RunoutHorstGraben", "RunoutMorphology")
 FILTERS = OVERLAY_FILTERS + ("RunoutPlasticStrain", "RunoutMorphologyHistory")
+# Every Runout filter has two outputs (ports 0 and 1).
+PORTS = 2
+# The history's chart: the plugin's line chart with titled axes (left, bottom).
+CHART = "RunoutHistoryChartView"
+AXIS_TITLES = ["distance (m)", "time (s)"]
 # ParaView's Qt object names (its test recorder writes the same).
 SHELL = "pqClientMainWindow/pythonShellDock/pythonShell/consoleWidget"
 APPLY = "pqClientMainWindow/propertiesDock/propertiesPanel/Accept"
@@ -82,9 +93,19 @@ def events(steps, config):
                   event(MENU, "activate", name), event(APPLY, "activate")]
         if name == OVERLAY_FILTERS[-1]:
             lines.append(step("record", "overlays"))
-    lines += [step("record", "applied"), event(VCR + "actionVCRLastFrame", "activate"),
+    lines.append(step("record", "applied"))
+    # Every output in a spreadsheet where the filters were applied (t = 0:
+    # empty bands and blocks, one-row tables), each shown between events so
+    # that the Qt table paints it.
+    lines += [step("sheet", f"{name}:{port}") for name in FILTERS for port in range(PORTS)]
+    lines += [step("sheet-close", ""), event(VCR + "actionVCRLastFrame", "activate"),
               step("record", "last"), event(VCR + "actionVCRPreviousFrame", "activate"),
-              step("record", "previous"), step("finish", "")]
+              step("record", "previous")]
+    # docs/paraview.md's pictures: the GUI after the walk-through, then with
+    # the colours its step 4 has the user give (each a step of its own, so
+    # that the screen is painted before it is saved).
+    lines += [step("frame", ""), step("picture", "gui_layout"), step("style", ""),
+              step("picture", "gui_walkthrough"), step("finish", "")]
     return "<?xml version=\"1.0\" ?>\n<pqevents>\n" + "\n".join(lines) + "\n</pqevents>\n"
 
 
@@ -173,6 +194,57 @@ def check_opening(applied, failures):
     check_step(applied, failures)
 
 
+def check_sheets(sheets, failures):
+    """Each Runout filter's outputs at t = 0 in a spreadsheet (steps
+    "sheet"): every one shown (a crash leaves no record), and for the
+    attributes the output has (a table's rows; a data set's points and
+    cells) the spreadsheet lists as many rows as the output has, with
+    columns where there are rows; the history's tables carry no frame's
+    field data."""
+    shown = sorted((s["source"], s["port"]) for s in sheets)
+    expected = sorted((name, port) for name in FILTERS for port in range(PORTS))
+    if shown != expected:
+        failures.append(f"outputs shown in a spreadsheet: {shown}, not {expected}")
+    for sheet in sheets:
+        what = f"{sheet['source']} port {sheet['port']} in a spreadsheet"
+        if sheet["time"] != 0:
+            failures.append(f"{what} at t = {sheet['time']}, not 0")
+        own = ("rows",) if sheet["class"] == "vtkTable" else ("points", "cells")
+        for attribute in own:
+            listed = sheet["attributes"][attribute]
+            count = sheet["counts"][attribute]
+            if listed["rows"] != count:
+                failures.append(f"{what}: {listed['rows']} rows of {attribute}, "
+                                f"the output has {count}")
+            elif count and not listed["columns"]:
+                failures.append(f"{what}: {count} {attribute} and no column")
+        # The history's tables span every frame: no one frame's field data
+        # (its TimeValue, ...) may come with them.
+        field = sheet["attributes"]["field"]
+        if sheet["source"] == "RunoutMorphologyHistory" and field["columns"]:
+            failures.append(f"{what}: field data {field['columns']}")
+
+
+def check_pictures(paths, failures):
+    """docs/paraview.md's pictures of the whole screen: both saved, the
+    GUI's window over the screen (not one colour), and the second with the
+    particles coloured (not the first again)."""
+    import numpy
+    names = [os.path.basename(p) for p in paths]
+    if names != ["gui_layout.png", "gui_walkthrough.png"]:
+        failures.append(f"pictures of the GUI: {names}")
+        return
+    screens = [pixels(p) for p in paths]
+    for name, screen in zip(names, screens):
+        if screen.shape[:2] != (1000, 1600) or screen.std() < 10:
+            failures.append(f"{name}: {screen.shape[1]} x {screen.shape[0]}, "
+                            f"spread {screen.std():.1f}: not the GUI's screen")
+    changed = (numpy.abs(screens[0] - screens[1]).max(axis=2) > 40).mean()
+    if changed < 0.005:
+        failures.append(f"{names[1]} differs from {names[0]} in {changed:.2%} of its pixels: "
+                        "not recoloured")
+
+
 def check_record(record, failures):
     steps = {step["tag"]: step for step in record["steps"]}
     if sorted(steps) != ["applied", "last", "opened", "overlays", "previous"]:
@@ -183,8 +255,12 @@ def check_record(record, failures):
         if name not in applied["sources"]:
             failures.append(f"{name} not in the pipeline after its Apply: {applied['sources']}")
     views = sorted(applied["views"])
-    if views != ["RenderView", "XYChartView"]:
+    if views != ["RenderView", CHART]:
         failures.append(f"views after the walk-through: {views} (one render view, one chart)")
+    titles = applied["axis_titles"].get(CHART)
+    if titles != AXIS_TITLES:
+        failures.append(f"the history chart's axes (left, bottom) are titled {titles}, "
+                        f"not {AXIS_TITLES}")
     reps = {(r["source"], r["port"], r["view"]): r for r in applied["representations"]}
 
     def rep(source, port, view="RenderView"):
@@ -202,12 +278,14 @@ def check_record(record, failures):
     for source in ("RunoutShearBands", "RunoutHorstGraben", "RunoutMorphology"):
         if not rep(source, 0).get("visible"):
             failures.append(f"{source} is not shown in the render view")
-    chart = rep("RunoutMorphologyHistory", 1, "XYChartView")
+    chart = rep("RunoutMorphologyHistory", 1, CHART)
     shown = sorted(chart.get("series", []))
     if shown != sorted(["toe (m)", "rear (m)", "runout (m)", "length (m)",
                         "max_thickness (m)"]):
         failures.append(f"the history chart shows {shown}")
     check_opening(applied, failures)
+    check_sheets(record.get("sheets", []), failures)
+    check_pictures(record.get("pictures", []), failures)
     times = [steps[t]["time"] for t in ("opened", "last", "previous")]
     if not times[0] < times[2] < times[1]:
         failures.append(f"times at open, last, previous frame: {times}")
@@ -237,10 +315,12 @@ def main():
         folder = keep or os.path.join(work, "shots")
         os.makedirs(folder, exist_ok=True)
         config = os.path.join(work, "config.json")
+        fbdir = os.path.join(work, "screen")
+        os.makedirs(fbdir)
         # Kept with the screenshots, for --check.
         result = os.path.join(folder, "record.json")
         with open(config, "w") as f:
-            json.dump({"folder": folder, "result": result,
+            json.dump({"folder": folder, "result": result, "fbdir": fbdir,
                        "states": os.path.join(source, "states")}, f)
         script = os.path.join(work, "events.xml")
         with open(script, "w") as f:
@@ -250,9 +330,16 @@ def main():
         os.makedirs(env["HOME"])
         start = time.time()
         # timeout inside xvfb-run: a hung GUI is killed, not left running.
-        proc = subprocess.run(XVFB + ["timeout", "-k", "5", "200", paraview,
+        xvfb = XVFB[:-1] + [XVFB[-1].format(fbdir=fbdir)]
+        proc = subprocess.run(xvfb + ["timeout", "-k", "5", "200", paraview,
                                       "--data=" + os.path.join(run_dir, "default.pvd"),
-                                      "--test-script=" + script, "--exit"],
+                                      "--test-script=" + script, "--exit",
+                                      # No settings: no Welcome dialog, which
+                                      # would stop the event player.
+                                      "--dr",
+                                      # The screen's size (no window manager
+                                      # to maximise it), for the pictures.
+                                      "-geometry", "1600x1000+0+0"],
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                               env=env)
         print(f"paraview ran {time.time() - start:.0f} s, exit {proc.returncode}")

@@ -139,7 +139,12 @@ int vtkRunoutMorphologyHistory::NextTimeStep(
   request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
   this->CurrentTimeIndex = 0;
   vtkTable::GetData(outputVector)->ShallowCopy(this->History);
-  AddLengthColumns(this->History, vtkTable::GetData(outputVector, 1));
+  // Built apart and copied in whole, as the History: the output the pipeline
+  // hands over carries the field data of an input frame (its TimeValue
+  // among it), which a table of every frame must not.
+  vtkNew<vtkTable> lengths;
+  AddLengthColumns(this->History, lengths);
+  vtkTable::GetData(outputVector, 1)->ShallowCopy(lengths);
   return 1;
 }
 
