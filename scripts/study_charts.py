@@ -2,14 +2,19 @@
 """Charts of a `runout study` folder (docs/study.md), rendered headless.
 
     study_charts.py STUDY_DIR OUT_PREFIX [--title TEXT] [--slopes]
+                    [--exceedance] [--mechanism-map KEY_X KEY_Y]
 
 writes OUT_PREFIX_error_vs_wall.png (one point per run, the Pareto front the
 study marked joined), OUT_PREFIX_convergence.png (error against cell size per
 series, with the observed order the study fitted) and OUT_PREFIX_runout.png
 (the toe runout history of every run). With --slopes (a study over
 --slope-angle) it writes OUT_PREFIX.png instead: the MPM and the
-depth-averaged model against the slope angle, and prints their table. The
-functions take the rows of read_study() so other charts can reuse them.
+depth-averaged model against the slope angle, and prints their table.
+With --exceedance (a study with --sample) it writes OUT_PREFIX_exceedance.png:
+the probability that the runout exceeds x, with its 95 % confidence band
+from the sample size; with --mechanism-map (a study with --set over two
+keys) OUT_PREFIX_mechanism_map.png: the mechanism class of each point.
+The functions take the rows of read_study() so other charts can reuse them.
 """
 import argparse
 import csv
@@ -38,7 +43,8 @@ def read_study(study_dir):
         rows = list(csv.DictReader(f))
     for row in rows:
         for key, value in list(row.items()):
-            if key not in ("id", "method", "backend", "shape", "status", "note", "reference"):
+            if key not in ("id", "method", "backend", "shape", "scene", "status", "note",
+                           "mechanism", "reference"):
                 row[key] = number(value)
     return rows
 
@@ -252,6 +258,90 @@ def print_slope_table(table):
         print("| " + " | ".join(cells) + " |")
 
 
+def dkw_epsilon(n, alpha=0.05):
+    """Half-width of the Dvoretzky-Kiefer-Wolfowitz band: with probability
+    1 - alpha the true distribution function lies within it of the
+    empirical one everywhere (Massart's constant), whatever the
+    distribution."""
+    return math.sqrt(math.log(2.0 / alpha) / (2.0 * n))
+
+
+def exceedance(values):
+    """(x, P(X > x)) of the sample as a step function: x sorted, and after
+    the k-th smallest value (k from 1) the fraction above it, 1 - k / n."""
+    x = sorted(values)
+    n = len(x)
+    return x, [1.0 - (k + 1) / n for k in range(n)]
+
+
+def chart_exceedance(rows, path, title="", metric="runout_end", alpha=0.05):
+    """P(runout > x) of the finished runs, its 1 - alpha DKW band shaded;
+    the title says how many of the study's runs that is (a run that blew
+    up has no runout to count). Returns (n, epsilon)."""
+    values = [r[metric] for r in rows if r["status"] == "ok" and math.isfinite(r[metric])]
+    n, ran = len(values), sum(r["status"] != "skipped" for r in rows)
+    if n == 0:
+        raise SystemExit("no finished run has a %s" % metric)
+    x, p = exceedance(values)
+    eps = dkw_epsilon(n, alpha)
+    # As steps (each value holds until the next x): 1 left of the smallest
+    # value, a drop of 1 / n at each.
+    pad = 0.05 * (x[-1] - x[0] or abs(x[0]) or 1.0)
+    xs, ps = [x[0] - pad] + x, [1.0] + p
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    ax.fill_between(xs, [max(0.0, q - eps) for q in ps], [min(1.0, q + eps) for q in ps],
+                    step="post", color="tab:blue", alpha=0.2,
+                    label="%d %% band (DKW, n = %d: ±%.2f)" % (100 * (1 - alpha), n, eps))
+    ax.step(xs, ps, where="post", color="tab:blue", lw=1.5, label="empirical P(%s > x)" % metric)
+    ax.set_ylim(0, 1.02)
+    save(fig, ax, path, "%s x [m]" % metric, "probability of exceedance",
+         "%s (%d of %d runs finished)" % (title or "Probability that the runout exceeds x", n, ran))
+    return n, eps
+
+
+# Colours and markers of the mechanism classes (summary.json's names).
+MECHANISMS = {"elongation": ("tab:blue", "o"), "block sliding": ("tab:green", "s"),
+              "spreading": ("tab:red", "^"), "undetermined": ("tab:gray", "x"),
+              "": ("k", "."), "failed": ("k", "X")}
+
+
+def chart_mechanism_map(rows, key_x, key_y, path, title=""):
+    """The mechanism class at each (key_x, key_y) of the study: per point,
+    the finest finished MPM run (smallest cell, most particles per cell).
+    Returns {(x, y): mechanism}."""
+    best = {}
+    for r in rows:
+        if r["method"] != "mpm" or r["status"] not in ("ok", "failed"):
+            continue
+        point = (r[key_x], r[key_y])
+        rank = (r["cell"], -r["ppc"])
+        if point not in best or rank < best[point][0]:
+            best[point] = (rank, r)
+    classes = {p: (r["mechanism"] if r["status"] == "ok" else "failed") for p, (_, r) in best.items()}
+    xs, ys = sorted({p[0] for p in classes}), sorted({p[1] for p in classes})
+    fig, ax = plt.subplots(figsize=(7.4, 4.4))
+    for name in MECHANISMS:
+        pts = [p for p, c in classes.items() if c == name]
+        if pts:
+            colour, marker = MECHANISMS[name]
+            ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=90, c=colour, marker=marker,
+                       label=name or "not classified")
+    # Keys swept over decades (a sensitivity of 1 to 40) read better on a
+    # log axis, ticked at the values swept; the legend goes beside the map.
+    for log, ticks, names, values in ((ax.set_xscale, ax.set_xticks, ax.set_xticklabels, xs),
+                                      (ax.set_yscale, ax.set_yticks, ax.set_yticklabels, ys)):
+        if min(values) > 0 and max(values) >= 8 * min(values):
+            log("log")
+        ticks(values)
+        names(["%g" % v for v in values])
+    ax.minorticks_off()
+    ax.margins(0.1)
+    label(ax, key_x, key_y, title or "Mechanism map")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    write(fig, path)
+    return classes
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("study_dir")
@@ -261,8 +351,22 @@ def main():
                         help="draw the rigid block's s = a t^2 / 2 on the runout chart")
     parser.add_argument("--slopes", action="store_true",
                         help="a study over --slope-angle: the DAM against the MPM, OUT_PREFIX.png")
+    parser.add_argument("--exceedance", action="store_true",
+                        help="a sampled study: P(runout > x) with its confidence band")
+    parser.add_argument("--mechanism-map", nargs=2, metavar=("KEY_X", "KEY_Y"),
+                        help="the mechanism class over two keys of the study")
     args = parser.parse_args()
     rows = read_study(args.study_dir)
+    if args.exceedance or args.mechanism_map:
+        if args.exceedance:
+            n, eps = chart_exceedance(rows, args.out_prefix + "_exceedance.png", args.title)
+            print("exceedance: %d runs, DKW 95 %% band ±%.3f" % (n, eps))
+        if args.mechanism_map:
+            classes = chart_mechanism_map(rows, *args.mechanism_map,
+                                          args.out_prefix + "_mechanism_map.png", args.title)
+            for (x, y), c in sorted(classes.items()):
+                print("%g, %g: %s" % (x, y, c))
+        return
     if args.slopes:
         print_slope_table(chart_dam_vs_mpm(args.study_dir, rows, args.out_prefix + ".png",
                                            args.title))

@@ -1,8 +1,6 @@
 #include "study_command.hpp"
 
 #include <sys/wait.h>
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +20,7 @@
 #include "runout/run_summary_file.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/study.hpp"
+#include "child_process.hpp"
 #include "study_parameters.hpp"
 #include "study_slurm.hpp"
 
@@ -200,23 +199,6 @@ bool finished_run(const fs::path& dir, const std::string& scene_hash) {
   }
 }
 
-// fork + exec of this same binary, its output into run.log.
-pid_t spawn(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<char*> argv;
-  for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
-  argv.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid != 0) return pid;
-  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd >= 0) {
-    dup2(fd, STDOUT_FILENO);
-    dup2(fd, STDERR_FILENO);
-  }
-  execv(argv[0], argv.data());
-  std::perror("runout study: exec");
-  _exit(127);
-}
-
 // The last "runout: " line of a child's log: why it wrote no summary.
 std::string log_reason(const fs::path& log) {
   std::ifstream in(log);
@@ -280,7 +262,7 @@ void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>&
       const RunSpec& r = runs[todo[next]];
       const fs::path dir = runs_dir / r.id;
       fs::create_directories(dir);
-      const pid_t pid = spawn(child_args(r, dir, a.threads), dir / "run.log");
+      const pid_t pid = spawn(child_args(r, dir, a.threads), dir / "run.log", true);
       if (pid < 0) throw std::runtime_error("cannot start a run: fork failed");
       running[pid] = todo[next];
     }
@@ -293,7 +275,7 @@ void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>&
     if (it == running.end()) continue;
     const std::size_t k = it->second;
     running.erase(it);
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    const int code = exit_code(status);
     const std::string reason = log_reason(runs_dir / runs[k].id / "run.log");
     why[k] = "exit " + std::to_string(code) + (reason.empty() ? "" : ": " + reason);
     std::fprintf(stderr, "runout study: [%zu/%zu] %s exit %d\n", ++done, todo.size(),

@@ -1,15 +1,15 @@
 #include "study_slurm.hpp"
 
 #include <sys/wait.h>
-#include <fcntl.h>
-#include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
 
+#include "child_process.hpp"
 #include "runout/atomic_file.hpp"
 
 namespace runout {
@@ -39,22 +39,12 @@ std::string array_spec(const std::vector<std::size_t>& indices) {
 
 // sbatch with these arguments, its stdout into `out`; its exit status.
 int sbatch(const std::vector<std::string>& args, const fs::path& out) {
-  std::vector<char*> argv;
-  for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
-  argv.push_back(nullptr);
-  const pid_t pid = fork();
+  const pid_t pid = spawn(args, out, false);
   if (pid < 0) throw std::runtime_error("cannot start sbatch: fork failed");
-  if (pid == 0) {
-    const int fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) dup2(fd, STDOUT_FILENO);
-    execvp("sbatch", argv.data());
-    std::perror("runout study: sbatch");
-    _exit(127);
-  }
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) throw std::runtime_error("lost sbatch: waitpid failed");
+  return exit_code(status);
 }
 
 std::string read_text(const fs::path& path) {
