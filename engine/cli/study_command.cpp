@@ -175,12 +175,13 @@ std::vector<RunSpec> expand_matrix(const StudyArgs& a, std::size_t points,
   return runs;
 }
 
-// `runout run` of one combination; argv[0] is this binary.
+// `runout run` of one combination; argv[0] is this binary. Paths are
+// absolute: a Slurm element may start in another folder.
 std::vector<std::string> child_args(const RunSpec& r, const fs::path& run_dir, int threads) {
   std::vector<std::string> v{fs::read_symlink("/proc/self/exe").string(), "run",
-                             r.variant->file, "--method", r.method,
+                             fs::absolute(r.variant->file).string(), "--method", r.method,
                              "--backend", r.backend, "--cell", format(r.cell, "%.17g"),
-                             "--out", run_dir.string(), "--quiet",
+                             "--out", fs::absolute(run_dir).string(), "--quiet",
                              "--threads", std::to_string(threads)};
   if (r.method == "mpm") {
     v.insert(v.end(), {"--shape", r.shape, "--ppc", std::to_string(r.ppc)});
@@ -337,7 +338,7 @@ int launch(const std::vector<RunSpec>& runs, const StudyArgs& a, const fs::path&
     const fs::path run_dir = dir / "runs" / runs[k].id;
     fs::create_directories(run_dir);
     fs::remove(run_dir / kSummaryFile);  // an unfinished run's: not this submission's result
-    elements.push_back({child_args(runs[k], fs::absolute(run_dir), a.threads), run_dir / "run.log"});
+    elements.push_back({child_args(runs[k], run_dir, a.threads), run_dir / "run.log"});
   }
   try {
     const int submissions = run_on_slurm(
