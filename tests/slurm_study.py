@@ -8,10 +8,11 @@ root) with a generated slurm.conf in a folder of its own (the recipe of
 shared/BUILD.md, "A real Slurm on one machine"), runs one study of 16
 coarse runs with the local launcher and the same study through Slurm,
 cancels one running element of the job array (as a pre-emption would), and
-asserts that the study submitted that element again, that the two CSVs hold
-the same values (all columns but the wall time, the memory and what is
-derived from them), and that the daemons are gone after it stopped them,
-also when an assertion failed. Exit 77 (skipped) with the reason when the
+asserts that the study submitted that element again, that the array states
+its cores, memory and time, that the two CSVs hold the same values (all
+columns but the wall time, the memory and what is derived from them), and
+that the daemons are gone after it stopped them, also when an assertion
+failed. Exit 77 (skipped) with the reason when the
 daemons cannot be started here.
 """
 import csv
@@ -175,6 +176,15 @@ def check_studies(runout, source, root):
     assert len(submissions) == 2, submissions
     assert submissions[0]["elements"] == "0-15", submissions
     assert submissions[1]["elements"] == str(killed), (killed, submissions)
+
+    # The request states its resources: one core per run (--threads 1), the
+    # memory estimate plus the process's 64 MiB, 5 minutes at least.
+    with open(os.path.join(slurm_dir, "slurm", "array.sh")) as f:
+        request = dict(line[len("#SBATCH "):].strip().lstrip("-").split("=", 1)
+                       for line in f if line.startswith("#SBATCH ") and "=" in line)
+    assert request["cpus-per-task"] == "1", request
+    assert request["mem"].endswith("M") and int(request["mem"][:-1]) > 64, request
+    assert int(request["time"]) >= 5, request
 
     a, b = rows(os.path.join(local_dir, "study.csv")), rows(os.path.join(slurm_dir, "study.csv"))
     assert len(a) == 16 and len(b) == 16, (len(a), len(b))
