@@ -113,19 +113,19 @@ TEST_F(Cli, RunWritesFramesIndexHistoryAndResolvedScene) {
 // Only the CPU driver averages nonlocally: the cuda backend refuses such a
 // scene with 69 whether or not a device is there, naming the key; on the
 // CPU the scene runs.
-TEST_F(Cli, NonlocalSofteningRunsOnTheCpuOnly) {
+// Nonlocal softening runs in the one driver (driver.hpp), so on either
+// backend: where the cuda backend is refused it is for want of a device,
+// never for the scene.
+TEST_F(Cli, NonlocalSofteningRunsOnEitherBackend) {
   std::string text = kSmallScene;
   const std::string elastic = "poisson_ratio = 0.3\n";
   text.replace(text.find(elastic), elastic.size(),
                elastic + "model = \"tresca\"\nsu0 = 5000.0\nnonlocal_length = 1.0\n");
   const std::string scene = write("small.toml", text);
-  const fs::path out = dir_ / "out";
-  const Result cuda = run_cli("run " + scene + " --backend cuda -q --out " + out.string());
-  EXPECT_EQ(cuda.code, 69) << cuda.output;
-  EXPECT_NE(cuda.output.find("nonlocal_length"), std::string::npos) << cuda.output;
-  EXPECT_NE(cuda.output.find("--backend cpu"), std::string::npos) << cuda.output;
-  EXPECT_FALSE(fs::exists(out));
-  const Result cpu = run_cli("run " + scene + " -q --out " + out.string());
+  const Result cuda = run_cli("run " + scene + " --backend cuda -q --out " + (dir_ / "gpu").string());
+  EXPECT_TRUE(cuda.code == 0 || cuda.code == 69) << cuda.output;
+  EXPECT_EQ(cuda.output.find("nonlocal_length"), std::string::npos) << cuda.output;
+  const Result cpu = run_cli("run " + scene + " -q --out " + (dir_ / "cpu").string());
   EXPECT_EQ(cpu.code, 0) << cpu.output;
 }
 

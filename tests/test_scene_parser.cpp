@@ -82,7 +82,7 @@ TEST(SceneParser, DefaultSceneParses) {
   EXPECT_DOUBLE_EQ(s.base.shear_strength, 1000.0);
   EXPECT_DOUBLE_EQ(s.time.end, 60.0);
   EXPECT_DOUBLE_EQ(s.time.output_interval, 1.0);
-  EXPECT_DOUBLE_EQ(s.time.rest_fraction, 1e-2);
+  EXPECT_DOUBLE_EQ(s.time.rest_fraction, 1e-3);
   EXPECT_DOUBLE_EQ(s.gravity.slope_angle_deg, 5.0);
   const double theta = 5.0 * kPi / 180.0;
   EXPECT_NEAR(s.gravity.vector.x(), 9.81 * std::sin(theta), 1e-12);

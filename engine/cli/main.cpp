@@ -224,10 +224,6 @@ MpmBackend mpm_backend(const std::string& backend, std::string& why_not) {
 // The run of the scene's method on the chosen backend, or null with the
 // reason when that backend cannot run here.
 Runner runner_for(const Scene& s, const std::string& backend, std::string& why_not) {
-  if (s.method != Method::Dam && backend == "cuda") {
-    why_not = cuda_refusal(s);
-    if (!why_not.empty()) return nullptr;
-  }
   if (s.method != Method::Dam) return mpm_backend(backend, why_not).run;
   if (backend == "cpu") return run_dam;
   why_not = "the depth-averaged model runs on the CPU only";

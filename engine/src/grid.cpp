@@ -5,10 +5,9 @@
 
 namespace runout {
 
-void Grid::fit(double xmin, double xmax, double ymin, double ymax, double domain_x,
-               double domain_y, double h) {
+const GridView& Grid::fit(const GridView& placed) {
   GridView& g = view_;
-  place_box(g, xmin, xmax, ymin, ymax, domain_x, domain_y, h);
+  g = placed;
   const std::size_t n = static_cast<std::size_t>(g.nx) * g.ny;
   if (n > m_.size()) {
     for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &vmx_, &vmy_,
@@ -36,6 +35,7 @@ void Grid::fit(double xmin, double xmax, double ymin, double ymax, double domain
   g.xvy = xvy_.data();
   for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_}) std::fill_n(a->begin(), n, 0.0);
   std::fill_n(gap_.begin(), n, std::numeric_limits<double>::infinity());
+  return g;
 }
 
 }  // namespace runout

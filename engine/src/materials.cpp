@@ -8,15 +8,6 @@ StrengthParams strength_params(const MaterialSpec& m) {
           m.strength_form};
 }
 
-std::string cuda_refusal(const Scene& scene) {
-  for (const auto& m : scene.materials)
-    if (m.nonlocal_length > 0.0)
-      return "material " + m.name +
-             " has nonlocal_length (nonlocal softening), which the CUDA driver does not "
-             "average; run it with --backend cpu";
-  return "";
-}
-
 MaterialParams material_params(const MaterialSpec& m) {
   MaterialParams params = elastic_params(m.density, m.youngs_modulus, m.poisson_ratio);
   params.model = m.model;

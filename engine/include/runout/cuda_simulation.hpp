@@ -1,7 +1,7 @@
 #pragma once
-// The CUDA driver of the explicit MPM step: the same stage functions as the
-// CPU driver (stages.hpp), one thread per particle or node, with the state
-// kept on the device between steps. This header has no CUDA types, so plain
+// The explicit MPM step on a GPU: the one driver of driver.hpp over the
+// CUDA backend (engine/cuda/backend_cuda.cuh), one thread per particle or
+// node, with the state kept on the device between steps. This header has no CUDA types, so plain
 // C++ (the CLI, the tests) can include it; it exists, and the library behind
 // it (runout_cuda) links, only in a build with CUDA (RUNOUT_HAVE_CUDA).
 // See docs/cuda.md.
@@ -14,7 +14,7 @@
 #include "runout/particles.hpp"
 #include "runout/run.hpp"
 #include "runout/scene.hpp"
-#include "runout/simulation.hpp"  // NumericalFailure, StepConfig
+#include "runout/driver.hpp"  // NumericalFailure, StepCounters, StepConfig
 
 namespace runout {
 

@@ -54,11 +54,10 @@ inline void place_box(GridView& g, double xmin, double xmax, double ymin, double
 
 class Grid {
  public:
-  // Sets the box over particles spanning [xmin, xmax] x [ymin, ymax]
-  // (place_box), zeroes mass, momentum and force and sets the gap to
-  // +infinity (no particle). Storage only ever grows.
-  void fit(double xmin, double xmax, double ymin, double ymax, double domain_x,
-           double domain_y, double h);
+  // Takes the box of `placed` (place_box), zeroes mass, volume, momentum
+  // and force and sets the gap to +infinity (no particle). Storage only
+  // ever grows.
+  const GridView& fit(const GridView& placed);
   GridView view() { return view_; }
   const GridView& view() const { return view_; }
   std::size_t capacity() const { return m_.size(); }

@@ -1,8 +1,6 @@
 #pragma once
 // From a scene's material (host) to the plain parameter records the solvers
 // use, in one place for the MPM and the depth-averaged method.
-#include <string>
-
 #include "runout/material.hpp"
 #include "runout/scene.hpp"
 
@@ -12,9 +10,5 @@ namespace runout {
 // a law without softening or rate effect.
 StrengthParams strength_params(const MaterialSpec& m);
 MaterialParams material_params(const MaterialSpec& m);
-
-// Why the CUDA driver cannot run the scene (a material with nonlocal
-// softening, which only the CPU driver averages), or "" when it can.
-std::string cuda_refusal(const Scene& scene);
 
 }  // namespace runout

@@ -1,0 +1,80 @@
+#pragma once
+// What the two host backends of the driver (driver.hpp) share: the
+// particles and the grid in host memory, the step's per-particle arrays,
+// and the primitives that do not depend on how loops are run. The OpenMP
+// backend (backend_openmp.hpp) and the serial device backend
+// (backend_serial.hpp) add the loops, the binning and the scatter.
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "runout/grid.hpp"
+#include "runout/material.hpp"
+#include "runout/nonlocal.hpp"
+#include "runout/particles.hpp"
+#include "runout/stages.hpp"
+#include "runout/step_views.hpp"
+
+namespace runout {
+
+class Base;  // the rigid base: the host backends use the driver's own
+
+class HostBackend {
+ public:
+  HostBackend(Particles particles, const std::vector<MaterialParams>& materials,
+              const std::vector<double>& nonlocal_lengths)
+      : particles_(std::move(particles)), materials_(materials), lengths_(nonlocal_lengths) {
+    const std::size_t n = particles_.size();
+    for (auto* a : {&dx_, &dy_, &lxx_, &lxy_, &lyx_, &lyy_}) a->assign(n, 0.0);
+    const bool nonlocal = std::any_of(lengths_.begin(), lengths_.end(), [](double l) { return l > 0; });
+    if (nonlocal)
+      for (auto* a : {&xi_start_, &xi_local_, &xi_average_}) a->assign(n, 0.0);
+  }
+
+  Particles& host_particles() { return particles_; }
+  const Particles& host_particles() const { return particles_; }
+  ParticleView particles() { return particles_.view(); }
+  const Grid& grid() const { return grid_; }
+
+  GridView fit_grid(const GridView& placed) { return grid_.fit(placed); }
+  // The base's force is summed in node order, so the same every run.
+  double sum(const double* a, int count) const {
+    double total = 0;
+    for (int i = 0; i < count; ++i) total += a[i];
+    return total;
+  }
+  void fill(double* a, int count, double v) const { std::fill_n(a, count, v); }
+
+  GradientView gradients() { return {lxx_.data(), lxy_.data(), lyx_.data(), lyy_.data()}; }
+  StepScratch scratch() { return {dx_.data(), dy_.data()}; }
+  double* xi_start() { return xi_start_.data(); }
+  double* xi_local() { return xi_local_.data(); }
+  double* xi_average() { return xi_average_.data(); }
+  void nonlocal_average(NonlocalAverage& nonlocal, const double* in, double* out) {
+    const ParticleView P = particles_.view();
+    nonlocal.apply({P.n, P.x, P.y, P.vol, P.material}, in, out);
+  }
+  const double* nonlocal_lengths() const { return lengths_.data(); }
+  const MaterialParams* materials() const { return materials_.data(); }
+  const StepConfig& kernel_config(const StepConfig& c) const { return c; }
+
+ protected:
+  // Zeroes the per-cell sums of cell_means for the grid box g; returns the
+  // number of cells.
+  int clear_cells(const GridView& g) {
+    const int cells = (g.nx - 1) * (g.ny - 1);
+    cell_volume_.assign(cells, 0.0);
+    cell_mean_.assign(cells, 0.0);
+    return cells;
+  }
+
+  Particles particles_;
+  Grid grid_;
+  std::vector<MaterialParams> materials_;
+  std::vector<double> lengths_;
+  std::vector<double> dx_, dy_, lxx_, lxy_, lyx_, lyy_;
+  std::vector<double> xi_start_, xi_local_, xi_average_;  // nonlocal runs only
+  std::vector<double> cell_volume_, cell_mean_;  // per cell of the grid box
+};
+
+}  // namespace runout

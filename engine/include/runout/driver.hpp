@@ -1,0 +1,438 @@
+#pragma once
+// The explicit MPM step, written once (docs/engine.md, "One driver"): the
+// order of the stages of stages.hpp, the volumetric smoothing, the nonlocal
+// averaging, the guards, the counters and advance_to, over a backend that
+// says only how to run a loop:
+//
+//   particles()                        the particles' view (its memory)
+//   bounding_box()                     min/max of the positions, non-finite count
+//   fit_grid(placed)                   the grid box's arrays, cleared
+//   bin(g, c, step)                    whatever scatter() needs (blocks, a sort)
+//   scatter(g, c, stage)               stage(p, stencil, add, lower) per particle
+//   for_each(count, stage)             stage(i) per node or node row
+//   for_each_particle(stage)           stage(p)
+//   for_each_particle_stencil(g, c, stage)  stage(p, stencil)
+//   max_speed(stage)                   max of stage(p), and how many were < 0
+//   sum(a, count)                      a sum over nodes
+//   fill(a, count, v)
+//   cell_means(g, value)               per-cell volume-weighted means of value(p)
+//   gradients(), scratch(), xi_start(), nonlocal_average(...)
+//   materials(), kernel_config(c), host_particles()
+//
+// The CPU backend (backend_openmp.hpp) runs the loops with OpenMP and
+// scatters by block colouring, race-free and in a fixed order; the CUDA
+// backend (engine/cuda/backend_cuda.cuh) runs one thread per particle or
+// node and scatters with atomics; the serial device backend
+// (backend_serial.hpp) runs the CUDA backend's order on the CPU (a sort by
+// cell, stencils computed in each pass, scatters in particle order without
+// colouring), so that the code the GPU runs is tested where no GPU is.
+// The stage functors below are the kernels' bodies: plain structs with a
+// host-and-device call operator, so nvcc and g++ compile the same ones.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runout/base.hpp"
+#include "runout/grid.hpp"
+#include "runout/guards.hpp"
+#include "runout/material.hpp"
+#include "runout/nonlocal.hpp"
+#include "runout/particles.hpp"
+#include "runout/scene.hpp"
+#include "runout/stages.hpp"
+#include "runout/step_views.hpp"
+
+namespace runout {
+
+// A step produced non-finite values, lost a particle from the domain, sped
+// one past any physical speed or inverted or collapsed its volume (guards.hpp).
+// The state is then unusable; what was written before stays good.
+class NumericalFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A driver's state besides its particles: with the particles in their
+// memory order, enough to continue a run bit for bit (checkpoint.hpp).
+struct StepCounters {
+  double time = 0;
+  long steps = 0;
+  double last_dt = 0;
+  double basal_shear_force = 0;
+  double max_signal_speed = 0;  // sets the next stable_dt
+  double speed_limit = 0;       // GuardLimits::max_speed, fixed by the first particles
+};
+
+// The scene's step configuration and materials (step_config.cpp).
+std::vector<MaterialParams> make_materials(const Scene& scene);
+StepConfig make_step_config(const Scene& scene, const std::vector<MaterialParams>& materials);
+
+namespace stage {
+
+struct P2g {
+  ParticleView P;
+  GridView g;
+  StepConfig c;
+  template <class Add, class Lower>
+  RUNOUT_HD void operator()(int p, const Stencil2D& st, Add add, Lower lower) const {
+    p2g(P, p, st, g, c, add, lower);
+  }
+};
+struct GridUpdate {
+  GridView g;
+  StepConfig c;
+  double dt;
+  RUNOUT_HD void operator()(int n) const { grid_update(g, n, c, dt); }
+};
+struct ExchangeRow {
+  GridView g;
+  Exchange after;
+  RUNOUT_HD void operator()(int j) const { exchange_periodic(g, j, after); }
+};
+struct XpicStart {
+  GridView g;
+  StepConfig c;
+  RUNOUT_HD void operator()(int n) const { xpic_start(g, n, c); }
+};
+struct P2gSmoothed {
+  ParticleView P;
+  GridView g;
+  template <class Add, class Lower>
+  RUNOUT_HD void operator()(int p, const Stencil2D& st, Add add, Lower) const {
+    p2g_smoothed(P, p, st, g, add);
+  }
+};
+struct XpicTerm {
+  GridView g;
+  StepConfig c;
+  int k;
+  RUNOUT_HD void operator()(int n) const { xpic_term(g, n, c, k); }
+};
+// g2p reads only nodal velocities, so each particle's remap can follow it
+// in the same pass.
+struct G2pMomentum {
+  ParticleView P;
+  GridView g;
+  StepConfig c;
+  template <class Add, class Lower>
+  RUNOUT_HD void operator()(int p, const Stencil2D& st, Add add, Lower) const {
+    g2p(P, p, st, g, c);
+    p2g_momentum(P, p, st, g, add);
+  }
+};
+struct Remap {
+  GridView g;
+  StepConfig c;
+  double dt;
+  RUNOUT_HD void operator()(int n) const { remap_velocity(g, n, c, dt); }
+};
+struct Gradient {
+  GridView g;
+  double dt;
+  StepScratch s;
+  GradientView L;
+  RUNOUT_HD void operator()(int p, const Stencil2D& st) const {
+    L.store(p, velocity_gradient(st, g));
+    displacement(p, st, g, dt, s);
+  }
+};
+struct VolumetricRate {
+  GradientView L;
+  RUNOUT_HD double operator()(int p) const { return L.xx[p] + L.yy[p]; }
+};
+struct SetVolumetricRate {
+  GradientView L;
+  CellMeanView mean;
+  RUNOUT_HD void operator()(int p) const {
+    VelocityGradient l = L.load(p);
+    set_volumetric_rate(l, mean(p));
+    L.store(p, l);
+  }
+};
+// The particle's signal speed, or -1 where it fails a guard.
+struct Stress {
+  ParticleView P;
+  GradientView L;
+  const MaterialParams* mats;
+  double dt;
+  StepScratch s;
+  StepConfig c;
+  GuardLimits limits;
+  RUNOUT_HD double operator()(int p) const {
+    const double speed = stress_update(P, p, L.load(p), mats, dt, s);
+    wrap_periodic(P, p, c);
+    return particle_fault(P, p, limits) == Fault::None ? speed : -1.0;
+  }
+};
+struct MeanStress {
+  ParticleView P;
+  RUNOUT_HD double operator()(int p) const { return (P.sxx[p] + P.syy[p] + P.szz[p]) / 3.0; }
+};
+struct SetMeanStress {
+  ParticleView P;
+  CellMeanView mean;
+  RUNOUT_HD void operator()(int p) const {
+    const double shift = mean(p) - (P.sxx[p] + P.syy[p] + P.szz[p]) / 3.0;
+    P.sxx[p] += shift;
+    P.syy[p] += shift;
+    P.szz[p] += shift;
+  }
+};
+struct CopyXi {
+  ParticleView P;
+  double* to;
+  RUNOUT_HD void operator()(int p) const { to[p] = P.xi[p]; }
+};
+struct XiIncrement {
+  ParticleView P;
+  const double* start;
+  double* increment;
+  RUNOUT_HD void operator()(int p) const { increment[p] = P.xi[p] - start[p]; }
+};
+// The nonlocal increment replaces the local one, and su follows it.
+struct SetNonlocalXi {
+  ParticleView P;
+  const double* start;
+  const double* average;
+  const double* lengths;  // per material
+  const MaterialParams* mats;
+  RUNOUT_HD void operator()(int p) const {
+    if (lengths[P.material[p]] <= 0.0) return;
+    P.xi[p] = start[p] + average[p];
+    P.su[p] = strength(mats[P.material[p]].strength, P.xi[p], P.gamma_dot[p]);
+  }
+};
+
+}  // namespace stage
+
+template <class Backend>
+class Driver {
+ public:
+  Driver(const Scene& scene, Particles particles);
+  Driver(Driver&&) = default;
+  Driver(const Driver&) = delete;
+  Driver& operator=(const Driver&) = delete;
+
+  // dt = C h / max_p (c_p + |v_p|) from the current state.
+  double stable_dt() const { return courant_ * h_ / max_signal_speed_; }
+  // One step of size dt. Throws NumericalFailure.
+  void step(double dt);
+  // Steps with the CFL dt, shortening the last one to land on t exactly.
+  void advance_to(double t);
+
+  // The counters, and a driver that continues from them (its particles
+  // given to the constructor in the memory order they had).
+  StepCounters counters() const {
+    return StepCounters{time_, steps_, last_dt_, basal_shear_force_, max_signal_speed_,
+                        limits_.max_speed};
+  }
+  void restore(const StepCounters& c);
+
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  double last_dt() const { return last_dt_; }
+  // Tangential force of the base on the slide along +s in the last step
+  // [N per metre out of plane]; negative while it resists.
+  double basal_shear_force() const { return basal_shear_force_; }
+  const Base& base() const { return base_; }
+  double particle_spacing() const { return spacing_; }  // h / ppc
+  const std::vector<MaterialParams>& materials() const { return materials_; }
+  const StepConfig& config() const { return config_; }  // its base view on the host
+  const GuardLimits& limits() const { return limits_; }
+  const GridView& grid_view() const { return grid_; }
+  Backend& backend() { return backend_; }
+  const Backend& backend() const { return backend_; }
+
+ private:
+  void fit_grid(double dt);
+  void exchange(Exchange after);
+  void xpic_start_velocity(const StepConfig& c);
+  void regularise_softening();
+  [[noreturn]] void fail(double dt);
+
+  Base base_;
+  std::vector<MaterialParams> materials_;
+  std::vector<double> nonlocal_lengths_;
+  NonlocalAverage nonlocal_;
+  StepConfig config_;
+  GuardLimits limits_;
+  double max_signal_speed_ = 0;
+  Backend backend_;
+  GridView grid_{};
+  double domain_x_, domain_y_, h_, courant_, spacing_;
+  bool smooth_volumetric_;
+  double time_ = 0, last_dt_ = 0, basal_shear_force_ = 0;
+  long steps_ = 0;
+};
+
+// ---- Implementation -------------------------------------------------------
+
+namespace driver_detail {
+
+inline std::vector<double> nonlocal_lengths(const Scene& s) {
+  std::vector<double> out;
+  for (const auto& m : s.materials) out.push_back(m.nonlocal_length);
+  return out;
+}
+
+inline double first_signal_speed(const Particles& particles,
+                                 const std::vector<MaterialParams>& materials) {
+  Particles copy = particles;  // view() needs a mutable owner
+  const ParticleView P = copy.view();
+  double smax = 0;
+  for (int p = 0; p < P.n; ++p) smax = std::max(smax, cfl_speed(P, p, materials[P.material[p]]));
+  return smax;
+}
+
+}  // namespace driver_detail
+
+template <class Backend>
+Driver<Backend>::Driver(const Scene& scene, Particles particles)
+    : base_(scene.base, scene.grid.min.y()),
+      materials_(make_materials(scene)),
+      nonlocal_lengths_(driver_detail::nonlocal_lengths(scene)),
+      nonlocal_(nonlocal_lengths_),
+      config_(make_step_config(scene, materials_)),
+      limits_(guard_limits(scene, materials_, particles)),
+      max_signal_speed_(driver_detail::first_signal_speed(particles, materials_)),
+      backend_(std::move(particles), materials_, base_, nonlocal_lengths_),
+      domain_x_(scene.grid.min.x()),
+      domain_y_(scene.grid.min.y()),
+      h_(scene.grid.cell_size),
+      courant_(scene.time.courant),
+      spacing_(scene.grid.cell_size / scene.grid.ppc),
+      smooth_volumetric_(scene.solver.volumetric_smoothing) {
+  config_.base = base_.view();
+}
+
+template <class Backend>
+void Driver<Backend>::restore(const StepCounters& c) {
+  time_ = c.time;
+  steps_ = c.steps;
+  last_dt_ = c.last_dt;
+  basal_shear_force_ = c.basal_shear_force;
+  max_signal_speed_ = c.max_signal_speed;
+  limits_.max_speed = c.speed_limit;
+}
+
+template <class Backend>
+void Driver<Backend>::fail(double dt) {
+  throw NumericalFailure(describe_faults(backend_.host_particles(), limits_, steps_, time_, dt));
+}
+
+template <class Backend>
+void Driver<Backend>::fit_grid(double dt) {
+  ParticleBox b = backend_.bounding_box();
+  // The end of every step checks the particles; this catches particles
+  // given (or changed between steps) outside the domain before they index
+  // the grid.
+  const GuardLimits& g = limits_;
+  if (b.non_finite > 0 ||
+      !(b.xmin >= g.xmin && b.ymin >= g.ymin && b.xmax <= g.xmax && b.ymax <= g.ymax))
+    fail(dt);
+  if (config_.period > 0.0) periodic_span(config_, h_, b.xmin, b.xmax);
+  GridView placed;
+  place_box(placed, b.xmin, b.xmax, b.ymin, b.ymax, domain_x_, domain_y_, h_);
+  grid_ = backend_.fit_grid(placed);
+}
+
+template <class Backend>
+void Driver<Backend>::exchange(Exchange after) {
+  if (config_.period > 0.0) backend_.for_each(grid_.ny, stage::ExchangeRow{grid_, after});
+}
+
+// V* of XPIC(m) (stages.hpp): m - 1 round trips of the start velocity.
+template <class Backend>
+void Driver<Backend>::xpic_start_velocity(const StepConfig& c) {
+  const GridView g = grid_;
+  const ParticleView P = backend_.particles();
+  const int nodes = g.size();
+  backend_.for_each(nodes, stage::XpicStart{g, c});
+  for (int k = 2; k <= c.xpic_order; ++k) {
+    backend_.fill(g.px, nodes, 0.0);
+    backend_.fill(g.py, nodes, 0.0);
+    backend_.scatter(g, c, stage::P2gSmoothed{P, g});
+    exchange(Exchange::AfterMomentum);
+    backend_.for_each(nodes, stage::XpicTerm{g, c, k});
+    exchange(Exchange::AfterXpicTerm);
+  }
+}
+
+// The return mapping has put each particle on the yield surface of its own
+// increment; the nonlocal one takes over from the next step, where the
+// strength is evaluated at the regularised xi (the explicit scheme of
+// Galavi & Schweiger 2010: local return, nonlocal internal variable). The
+// increments are measured at the particles' end-of-step positions.
+template <class Backend>
+void Driver<Backend>::regularise_softening() {
+  const ParticleView P = backend_.particles();
+  double* start = backend_.xi_start();
+  double* local = backend_.xi_local();
+  double* average = backend_.xi_average();
+  backend_.for_each_particle(stage::XiIncrement{P, start, local});
+  backend_.nonlocal_average(nonlocal_, local, average);
+  backend_.for_each_particle(stage::SetNonlocalXi{P, start, average, backend_.nonlocal_lengths(),
+                                                  backend_.materials()});
+}
+
+template <class Backend>
+void Driver<Backend>::step(double dt) {
+  fit_grid(dt);
+  backend_.bin(grid_, config_, steps_);
+  configure_step(config_, time_, dt);
+  const StepConfig c = backend_.kernel_config(config_);
+  const GridView g = grid_;
+  const ParticleView P = backend_.particles();
+  const int nodes = g.size();
+
+  backend_.scatter(g, c, stage::P2g{P, g, c});
+  exchange(Exchange::AfterP2g);
+  backend_.for_each(nodes, stage::GridUpdate{g, c, dt});
+  exchange(Exchange::AfterGridUpdate);
+  const double basal = c.base.kind != BaseKind::None ? backend_.sum(g.fbase, nodes) : 0.0;
+  if (c.xpic_now) xpic_start_velocity(c);
+  backend_.fill(g.px, nodes, 0.0);
+  backend_.fill(g.py, nodes, 0.0);
+  backend_.scatter(g, c, stage::G2pMomentum{P, g, c});
+  exchange(Exchange::AfterMomentum);
+  backend_.for_each(nodes, stage::Remap{g, c, dt});
+  exchange(Exchange::AfterRemap);
+
+  const GradientView L = backend_.gradients();
+  const StepScratch s = backend_.scratch();
+  backend_.for_each_particle_stencil(g, c, stage::Gradient{g, dt, s, L});
+  if (smooth_volumetric_)
+    backend_.for_each_particle(
+        stage::SetVolumetricRate{L, backend_.cell_means(g, stage::VolumetricRate{L})});
+  if (nonlocal_.active()) backend_.for_each_particle(stage::CopyXi{P, backend_.xi_start()});
+  const SpeedMax speed = backend_.max_speed(
+      stage::Stress{P, L, backend_.materials(), dt, s, c, limits_});
+  if (speed.bad > 0) fail(dt);
+  if (nonlocal_.active()) regularise_softening();
+  if (smooth_volumetric_)
+    backend_.for_each_particle(
+        stage::SetMeanStress{P, backend_.cell_means(g, stage::MeanStress{P})});
+  max_signal_speed_ = speed.max;
+  basal_shear_force_ = basal;
+  time_ += dt;
+  last_dt_ = dt;
+  ++steps_;
+}
+
+template <class Backend>
+void Driver<Backend>::advance_to(double t) {
+  // Equal steps no longer than the CFL limit, so the last one is not a
+  // sliver; the final step lands on t exactly.
+  while (time_ < t) {
+    const double remaining = t - time_;
+    const double n = std::ceil(remaining / stable_dt());
+    step(remaining / n);
+    if (n <= 1.0) time_ = t;
+  }
+}
+
+}  // namespace runout
