@@ -244,13 +244,17 @@ void write_summary(const RunSummary& r, const RunOptions& opt, bool depth_averag
                                                 stopped_by(), usage.ru_maxrss / 1024.0, mechanism));
 }
 
-// Runs go (a run or a resume) with progress, writes its summary.json and
-// prints its summary; the exit code.
+// Runs go (a run or a resume) with progress, writes its summary.json (at
+// its end, while the run holds the folder) and prints its summary; the exit
+// code.
 int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOptions& opt,
             bool quiet, bool depth_averaged) {
   ProgressReporter progress;
   RunOptions with_progress = opt;
   if (!quiet) with_progress.on_progress = [&](const RunProgress& p) { progress.update(p); };
+  with_progress.on_finished = [&](const RunSummary& ended) {
+    write_summary(ended, opt, depth_averaged);
+  };
   RunSummary r;
   // An earlier run's summary is not this one's: a run killed before its end
   // leaves none.
@@ -258,7 +262,6 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
   std::filesystem::remove(std::filesystem::path(opt.out_dir) / kSummaryFile, ignored);
   try {
     r = go(with_progress);
-    write_summary(r, opt, depth_averaged);
   } catch (const SceneError&) {
     progress.finish();
     throw;  // a scene the method cannot run: main's exit code for it

@@ -223,6 +223,7 @@ void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_poi
   summary.steps_run = summary.steps - first_step;
   summary.end_time = model.time();
   summary.wall_seconds = seconds_since(start);
+  if (options.on_finished) options.on_finished(summary);
 }
 
 // The folder of a run being resumed from its checkpoint, put back as it was

@@ -14,9 +14,15 @@ struct RunProgress {
   double wall_seconds = 0;
 };
 
+struct RunSummary;
+
 struct RunOptions {
   std::string out_dir;
   std::function<void(const RunProgress&)> on_progress;  // called after each history row
+  // Called once the run has ended (its summary complete), while it still
+  // holds its output folder, so what it writes there (summary.json) cannot
+  // land in a later run's folder.
+  std::function<void(const RunSummary&)> on_finished;
   // A checkpoint (checkpoint.hpp) every this many simulated seconds,
   // rounded to whole history rows; 0: none. MPM only; a resumed run keeps
   // the interval of its checkpoint.
