@@ -30,9 +30,7 @@
 // host-and-device call operator, so nvcc and g++ compile the same ones.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
-#include <string>
 #include <utility>
 #include <vector>
 
@@ -243,7 +241,6 @@ class Driver {
   const std::vector<MaterialParams>& materials() const { return materials_; }
   const StepConfig& config() const { return config_; }  // its base view on the host
   const GuardLimits& limits() const { return limits_; }
-  const GridView& grid_view() const { return grid_; }
   Backend& backend() { return backend_; }
   const Backend& backend() const { return backend_; }
 
