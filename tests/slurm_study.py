@@ -16,6 +16,8 @@ failed. Exit 77 (skipped) with the reason when the
 daemons cannot be started here.
 """
 import csv
+import glob
+import json
 import os
 import pwd
 import shutil
@@ -145,17 +147,36 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
-def cancel_one_running_element(process):
-    """Cancels the first element seen running (scancel, as a pre-emption
-    would stop it: SIGTERM, then SIGKILL); its array index."""
+def finished(slurm_dir, k):
+    """Whether element k's run ended by itself (its summary says so)."""
+    for path in glob.glob(os.path.join(slurm_dir, "runs", "*_p%d" % k, "summary.json")):
+        with open(path) as f:
+            return json.load(f).get("status") in ("completed", "at_rest")
+    return False
+
+
+def cancel_one_running_element(process, slurm_dir):
+    """Cancels an element seen running (scancel, as a pre-emption would stop
+    it: SIGTERM, then SIGKILL) before its run ends; its array index. A run
+    takes about a second, so the one squeue shows running may end before
+    the cancel reaches it: then another is tried."""
+    tried = set()
     while process.poll() is None:
-        out = subprocess.run(["squeue", "-h", "-t", "R", "-o", "%i"], capture_output=True,
-                             text=True).stdout.split()
-        if out:
-            subprocess.run(["scancel", out[0]], check=True)
-            return int(out[0].split("_")[1])
+        running = subprocess.run(["squeue", "-h", "-t", "R", "-o", "%i"], capture_output=True,
+                                 text=True).stdout.split()
+        running = [j for j in running if "_" in j and int(j.split("_")[1]) not in tried]
+        if running:
+            job, k = running[0], int(running[0].split("_")[1])
+            tried.add(k)
+            subprocess.run(["scancel", job], check=True)
+            deadline = time.monotonic() + 30
+            while time.monotonic() < deadline and job in subprocess.run(
+                    ["squeue", "-h", "-o", "%i"], capture_output=True, text=True).stdout.split():
+                time.sleep(0.1)
+            if not finished(slurm_dir, k):
+                return k
         time.sleep(0.1)
-    raise AssertionError("the study ended before an element was seen running")
+    raise AssertionError("the study ended before an element could be cancelled while running")
 
 
 def check_studies(runout, source, root):
@@ -166,7 +187,7 @@ def check_studies(runout, source, root):
     assert local.returncode == 0, output
 
     on_slurm = study(runout, scene, slurm_dir, "--launcher", "slurm", "--max-resubmits", "2")
-    killed = cancel_one_running_element(on_slurm)
+    killed = cancel_one_running_element(on_slurm, slurm_dir)
     output = on_slurm.communicate()[0]
     assert on_slurm.returncode == 0, output
 
