@@ -276,10 +276,11 @@ inline std::vector<double> nonlocal_lengths(const Scene& s) {
   return out;
 }
 
-inline double first_signal_speed(const Particles& particles,
+// The driver's own particles, before the backend takes them: view() needs
+// a mutable owner, and a copy of every particle would cost start-up.
+inline double first_signal_speed(Particles& particles,
                                  const std::vector<MaterialParams>& materials) {
-  Particles copy = particles;  // view() needs a mutable owner
-  const ParticleView P = copy.view();
+  const ParticleView P = particles.view();
   double smax = 0;
   for (int p = 0; p < P.n; ++p) smax = std::max(smax, cfl_speed(P, p, materials[P.material[p]]));
   return smax;
