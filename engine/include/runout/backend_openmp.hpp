@@ -1,10 +1,12 @@
 #pragma once
 // The CPU backend of the driver (driver.hpp): OpenMP loops, and a scatter
-// by block colouring. Particles are grouped by blocks of kBlock x kBlock
-// cells and the blocks coloured 2 x 2; blocks of one colour never write the
+// by colouring. Particles are grouped by blocks of kBlock x kBlock cells,
+// and the blocks into strips kStrip blocks wide across the whole height of
+// the grid box, coloured alternately; strips of one colour never write the
 // same node, so the scatter is race-free without atomics and adds at every
 // node in the same order whatever the number of threads: results are bit
 // for bit the same on 1 or 16 threads.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -21,14 +23,25 @@ namespace runout {
 // flattened, the gap is within the machine's noise (3 %).
 class OpenMpBackend : public HostBackend {
  public:
-  // A particle in cell c touches nodes c-1..c+2, so a block writes nodes
-  // within one cell around itself plus two, and two same-colour blocks,
-  // kBlock cells apart, never share a node as long as kBlock > 2.
+  // Blocks are the unit of the memory order (a block's particles are
+  // stored together) and of the cell means (a cell lies in one block).
   static constexpr int kBlock = 4;
+  // A particle in cell c touches nodes c-1..c+2, so a strip writes nodes
+  // within one cell of itself plus two, and two strips of one colour, a
+  // strip (kStrip kBlock cells) apart, never share a node. Slides are long
+  // and thin: strips across x give two threads many, evenly filled pieces
+  // of work in each of two colours, where rows of blocks in four colours
+  // gave them few, uneven ones and four waits a scatter.
+  static constexpr int kStrip = 8;
   // Loops shorter than this run on one thread: a parallel region costs a
   // few microseconds, more than small scenes (and the tests) spend in the
   // loop.
   static constexpr int kParallelMin = 4096;
+  // Particle loops hand out chunks as threads come free: the particles are
+  // stored by block, bottom rows first, and those by the base (sheared,
+  // yielding, in contact) cost more per step than the rest, so equal halves
+  // kept one of two threads waiting a third of the loop.
+  static constexpr int kChunk = 1024;
   // Particles drift out of block order slowly (a cell in many steps), so
   // sorting them in memory every few dozen steps keeps the loops sequential.
   static constexpr long kReorderInterval = 50;
@@ -76,27 +89,16 @@ class OpenMpBackend : public HostBackend {
     const auto add = [](double* a, int n, double v) { a[n] += v; };
     const auto lower = [](double* a, int n, double v) { a[n] = std::min(a[n], v); };
     const Stencil2D* st = stencils_.data();
-    // A thread takes a whole row of blocks: blocks side by side in a row
-    // write nodes two apart, often in one cache line, and two threads there
-    // would fight over it; rows of one colour are 2 kBlock node rows apart.
-    for (int colour = 0; colour < 4; ++colour) {
-      const int cx = colour & 1, cy = colour >> 1;
+    for (int colour = 0; colour < 2; ++colour) {
 #pragma omp parallel for schedule(dynamic, 1) if (order_.size() > kParallelMin)
-      for (int by = cy; by < blocks_y_; by += 2) {
-        for (int bx = cx; bx < blocks_x_; bx += 2) {
-          const int b = by * blocks_x_ + bx;
-          for (int q = block_start_[b]; q < block_start_[b + 1]; ++q) {
-            const int p = order_[q];
-            stage(p, st[p], add, lower);
-          }
-        }
-      }
+      for (int strip = colour; strip < strips_; strip += 2)
+        for_each_in_strip(strip, [&](int p) { stage(p, st[p], add, lower); });
     }
   }
 
   template <class Stage>
   void for_each(int count, Stage stage) {
-#pragma omp parallel for if (count > kParallelMin)
+#pragma omp parallel for schedule(dynamic, kChunk) if (count > kParallelMin)
     for (int i = 0; i < count; ++i) stage(i);
   }
   template <class Stage>
@@ -107,7 +109,7 @@ class OpenMpBackend : public HostBackend {
   [[gnu::flatten]] void for_each_particle_stencil(const GridView&, const StepConfig&, Stage stage) {
     const Stencil2D* st = stencils_.data();
     const int n = particles_.size();
-#pragma omp parallel for if (n > kParallelMin)
+#pragma omp parallel for schedule(dynamic, kChunk) if (n > kParallelMin)
     for (int p = 0; p < n; ++p) stage(p, st[p]);
   }
 
@@ -116,7 +118,8 @@ class OpenMpBackend : public HostBackend {
     double smax = 0;
     int bad = 0;
     const int n = particles_.size();
-#pragma omp parallel for reduction(max : smax) reduction(+ : bad) if (n > kParallelMin)
+#pragma omp parallel for schedule(dynamic, kChunk) reduction(max : smax) reduction(+ : bad) \
+    if (n > kParallelMin)
     for (int p = 0; p < n; ++p) {
       const double s = stage(p);
       if (s >= 0.0 && std::isfinite(s))
@@ -132,15 +135,14 @@ class OpenMpBackend : public HostBackend {
   CellMeanView cell_means(const GridView& g, Value value) {
     const ParticleView P = particles_.view();
     const int cells = clear_cells(g);
-    // A cell's particles all lie in one block, so blocks never share a cell.
-    const int blocks = blocks_x_ * blocks_y_;
+    // A cell's particles all lie in one block, so strips never share a cell.
 #pragma omp parallel for schedule(dynamic, 1) if (P.n > kParallelMin)
-    for (int b = 0; b < blocks; ++b) {
-      for (int q = block_start_[b]; q < block_start_[b + 1]; ++q) {
-        const int p = order_[q], c = particle_cell_[p];
+    for (int strip = 0; strip < strips_; ++strip) {
+      for_each_in_strip(strip, [&](int p) {
+        const int c = particle_cell_[p];
         cell_volume_[c] += P.vol[p];
         cell_mean_[c] += P.vol[p] * value(p);
-      }
+      });
     }
 #pragma omp parallel for if (cells > kParallelMin)
     for (int c = 0; c < cells; ++c)
@@ -149,19 +151,30 @@ class OpenMpBackend : public HostBackend {
   }
 
  private:
+  // The particles of a strip, block row by block row, each block's in
+  // index order.
+  template <class F>
+  void for_each_in_strip(int strip, F&& f) const {
+    const int bx0 = strip * kStrip, bx1 = std::min(bx0 + kStrip, blocks_x_);
+    for (int by = 0; by < blocks_y_; ++by) {
+      const int row = by * blocks_x_;
+      for (int q = block_start_[row + bx0]; q < block_start_[row + bx1]; ++q) f(order_[q]);
+    }
+  }
+
   [[gnu::flatten]] void bin_particles(const GridView& g, const StepConfig& c) {
     const ParticleView P = particles_.view();
     const int cells_x = g.nx - 1, cells_y = g.ny - 1;
     blocks_x_ = (cells_x + kBlock - 1) / kBlock;
     blocks_y_ = (cells_y + kBlock - 1) / kBlock;
+    strips_ = (blocks_x_ + kStrip - 1) / kStrip;
     const int blocks = blocks_x_ * blocks_y_;
-#pragma omp parallel for if (P.n > kParallelMin)
+#pragma omp parallel for schedule(dynamic, kChunk) if (P.n > kParallelMin)
     for (int p = 0; p < P.n; ++p) {
-      const int ci = static_cast<int>(std::floor((P.x[p] - g.ox) / g.h));
-      const int cj = static_cast<int>(std::floor((P.y[p] - g.oy) / g.h));
+      make_stencil(g, c, P, p, stencils_[p]);
+      const int ci = stencils_[p].x.cell, cj = stencils_[p].y.cell;
       particle_block_[p] = (cj / kBlock) * blocks_x_ + ci / kBlock;
       particle_cell_[p] = cj * cells_x + ci;
-      make_stencil(g, c, P, p, stencils_[p]);
     }
     // Stable counting sort: within a block particles keep their index order,
     // which fixes the order of the sums at every node.
@@ -175,7 +188,7 @@ class OpenMpBackend : public HostBackend {
   std::vector<Stencil2D> stencils_;
   // Particles grouped by block of kBlock x kBlock cells (counting sort).
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, next_;
-  int blocks_x_ = 0, blocks_y_ = 0;
+  int blocks_x_ = 0, blocks_y_ = 0, strips_ = 0;
 };
 
 }  // namespace runout

@@ -119,7 +119,7 @@ struct G2pMomentum {
   template <class Add, class Lower>
   RUNOUT_HD void operator()(int p, const Stencil2D& st, Add add, Lower) const {
     g2p(P, p, st, g, c);
-    p2g_momentum(P, p, st, g, add);
+    p2g_momentum(P, p, st, g, c, add);
   }
 };
 struct Remap {
@@ -142,26 +142,22 @@ struct VolumetricRate {
   GradientView L;
   RUNOUT_HD double operator()(int p) const { return L.xx[p] + L.yy[p]; }
 };
-struct SetVolumetricRate {
-  GradientView L;
-  CellMeanView mean;
-  RUNOUT_HD void operator()(int p) const {
-    VelocityGradient l = L.load(p);
-    set_volumetric_rate(l, mean(p));
-    L.store(p, l);
-  }
-};
-// The particle's signal speed, or -1 where it fails a guard.
+// The particle's signal speed, or -1 where it fails a guard. With
+// volumetric smoothing (rate.mean set), L's volumetric part is first its
+// cell's mean.
 struct Stress {
   ParticleView P;
   GradientView L;
+  CellMeanView rate;
   const MaterialParams* mats;
   double dt;
   StepScratch s;
   StepConfig c;
   GuardLimits limits;
   RUNOUT_HD double operator()(int p) const {
-    const double speed = stress_update(P, p, L.load(p), mats, dt, s);
+    VelocityGradient l = L.load(p);
+    if (rate.mean) set_volumetric_rate(l, rate(p));
+    const double speed = stress_update(P, p, l, mats, dt, s);
     wrap_periodic(P, p, c);
     return particle_fault(P, p, limits) == Fault::None ? speed : -1.0;
   }
@@ -403,12 +399,11 @@ void Driver<Backend>::step(double dt) {
   const GradientView L = backend_.gradients();
   const StepScratch s = backend_.scratch();
   backend_.for_each_particle_stencil(g, c, stage::Gradient{g, dt, s, L});
-  if (smooth_volumetric_)
-    backend_.for_each_particle(
-        stage::SetVolumetricRate{L, backend_.cell_means(g, stage::VolumetricRate{L})});
+  const CellMeanView rate =
+      smooth_volumetric_ ? backend_.cell_means(g, stage::VolumetricRate{L}) : CellMeanView{};
   if (nonlocal_.active()) backend_.for_each_particle(stage::CopyXi{P, backend_.xi_start()});
   const SpeedMax speed = backend_.max_speed(
-      stage::Stress{P, L, backend_.materials(), dt, s, c, limits_});
+      stage::Stress{P, L, rate, backend_.materials(), dt, s, c, limits_});
   if (speed.bad > 0) fail(dt);
   if (nonlocal_.active()) regularise_softening();
   if (smooth_volumetric_)

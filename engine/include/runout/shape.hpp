@@ -10,6 +10,7 @@
 namespace runout {
 
 struct Stencil1D {
+  int cell;      // grid index of the cell the particle is in
   int first;     // grid index of the stencil's first node
   double r0;     // that node's offset from the particle, x_first - xp
   double w[3];   // weights of nodes first, first+1, first+2
@@ -51,6 +52,7 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
   const double cell = std::floor(u);
   const double frac = u - cell;
   const int c = static_cast<int>(cell);
+  s.cell = c;
   if (kind == ShapeKind::Linear) {
     s.first = c;
     s.r0 = -frac * h;

@@ -26,6 +26,7 @@
 // The price is a second scatter of momentum. Every stage evaluates the
 // shape functions at the positions of the start of the step, so the
 // particle moves only in the last stage.
+#include <algorithm>
 #include <cmath>
 
 #include "runout/base.hpp"
@@ -191,8 +192,11 @@ RUNOUT_HD inline void domain_half_widths(const ParticleView& P, int p, const Ste
   const double J = P.vol[p] / P.vol0[p];
   if (!(J > 0.0 && wx > 0.0 && wy > 0.0)) return;  // the guards stop such a run
   const double floor = 1e-3 * c.lp, cap = 0.5 * h;
-  lx = std::fmin(cap, std::fmax(floor, c.lp * std::sqrt(J * wx / wy)));
-  ly = std::fmin(cap, std::fmax(floor, c.lp * std::sqrt(J * wy / wx)));
+  // min and max, not fmin and fmax: the bounds are positive, so the results
+  // are the same to the bit (a NaN width takes the bound either way), and
+  // GCC calls libm for fmin and fmax unless it may assume no NaN.
+  lx = std::min(cap, std::max(floor, c.lp * std::sqrt(J * wx / wy)));
+  ly = std::min(cap, std::max(floor, c.lp * std::sqrt(J * wy / wx)));
 }
 
 RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
@@ -228,6 +232,13 @@ RUNOUT_HD inline AffineVelocity affine_velocity(const ParticleView& P, int p) {
   return {P.vx[p], P.vy[p], P.cxx[p], P.cxy[p], P.cyx[p], P.cyy[p]};
 }
 
+// The velocity a scatter carries: the affine field under APIC; under the
+// other transfers C is zero, so its arrays are not read and the scatters
+// use vx, vy alone, which v.x(r) would equal to the bit.
+RUNOUT_HD inline AffineVelocity particle_velocity(const ParticleView& P, int p, bool affine) {
+  return affine ? affine_velocity(P, p) : AffineVelocity{P.vx[p], P.vy[p], 0.0, 0.0, 0.0, 0.0};
+}
+
 // The gap between a particle's domain and the base: its signed distance to
 // the base less the half-extent of its rectangle of half-widths lx, ly
 // along the normal, lx |n_x| + ly |n_y|. Zero for a particle resting on the
@@ -246,27 +257,31 @@ template <class Add, class Lower>
 RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
                           const StepConfig& c, Add&& add, Lower&& lower) {
   const double m = P.mass[p], V = P.vol[p];
-  const AffineVelocity v = affine_velocity(P, p);
+  const bool affine = c.transfer == TransferKind::Apic;
+  const AffineVelocity v = particle_velocity(P, p, affine);
   const double sxx = P.sxx[p], syy = P.syy[p], sxy = P.sxy[p];
   // Nodes on or inside the base (distance <= 0) are the only ones that read
-  // the gap, and a particle reaches nodes at most h + lp away along x and y,
-  // so at most sqrt(2) (h + lp) away: the distance is 1-Lipschitz.
+  // the gap and the volume (geo_contact's interface area), and a particle
+  // reaches nodes at most h + lp away along x and y, so at most
+  // sqrt(2) (h + lp) away: the distance is 1-Lipschitz.
   bool near_base = false;
   double gap = 0.0;
   if (c.base.kind != BaseKind::None) {
     const BasePoint b = locate_on_base(c.base, P.x[p], P.y[p]);
-    near_base = b.d < std::sqrt(2.0) * (g.h + std::fmax(st.lx, st.ly));
+    near_base = b.d < std::sqrt(2.0) * (g.h + std::max(st.lx, st.ly));
     gap = particle_gap(st, b);
   }
   for_each_node(g, st, [&](int n, double N, double dNx, double dNy, double rx, double ry) {
-    if (N == 0.0 && dNx == 0.0 && dNy == 0.0) return;
+    // (no zero-weight test: adding an exact zero changes no sum)
     add(g.m, n, N * m);
-    add(g.vol, n, N * V);
-    add(g.px, n, N * m * v.x(rx, ry));
-    add(g.py, n, N * m * v.y(rx, ry));
+    add(g.px, n, N * m * (affine ? v.x(rx, ry) : v.vx));
+    add(g.py, n, N * m * (affine ? v.y(rx, ry) : v.vy));
     add(g.fx, n, -V * (sxx * dNx + sxy * dNy) + N * m * c.gravity_scale * c.gx);
     add(g.fy, n, -V * (sxy * dNx + syy * dNy) + N * m * c.gravity_scale * c.gy);
-    if (near_base && N > 0.0) lower(g.gap, n, gap);
+    if (near_base) {
+      add(g.vol, n, N * V);
+      if (N > 0.0) lower(g.gap, n, gap);
+    }
   });
 }
 
@@ -580,13 +595,14 @@ RUNOUT_HD inline void xpic_term(const GridView& g, int n, const StepConfig& c, i
 // Stage 4: the MUSL remap of the updated particle momentum.
 template <class Add>
 RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D& st,
-                                   const GridView& g, Add&& add) {
+                                   const GridView& g, const StepConfig& c, Add&& add) {
   const double m = P.mass[p];
-  const AffineVelocity v = affine_velocity(P, p);
+  const bool affine = c.transfer == TransferKind::Apic;
+  const AffineVelocity v = particle_velocity(P, p, affine);
   for_each_node(g, st, [&](int n, double N, double, double, double rx, double ry) {
     if (N == 0.0) return;
-    add(g.px, n, N * m * v.x(rx, ry));
-    add(g.py, n, N * m * v.y(rx, ry));
+    add(g.px, n, N * m * (affine ? v.x(rx, ry) : v.vx));
+    add(g.py, n, N * m * (affine ? v.y(rx, ry) : v.vy));
   });
 }
 

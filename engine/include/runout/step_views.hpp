@@ -17,7 +17,7 @@ struct GradientView {  // L per particle, structure of arrays
     yy[p] = l.yy;
   }
 };
-struct CellMeanView {  // the mean of the cell particle p is in
+struct CellMeanView {  // the mean of the cell particle p is in (mean null: none)
   const double* mean;
   const int* cell;
   RUNOUT_HD double operator()(int p) const { return mean[cell[p]]; }
