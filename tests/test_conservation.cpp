@@ -16,9 +16,9 @@ namespace {
 
 // A block with random velocities and random stresses: a hard case for
 // conservation, since every node gets unbalanced contributions.
-Simulation random_block(ShapeKind shape, double flip, double h = 0.5) {
-  Scene s = fixtures::block_scene({3.0, 3.0}, {9.0, 6.0}, {0.0, 0.0}, {12.0, 9.0}, h, 2,
-                                  1500.0, 1e6, 0.3);
+Simulation random_block(ShapeKind shape, double flip, double h = 0.5, double length = 6.0) {
+  Scene s = fixtures::block_scene({3.0, 3.0}, {3.0 + length, 6.0}, {0.0, 0.0},
+                                  {6.0 + length, 9.0}, h, 2, 1500.0, 1e6, 0.3);
   s.grid.shape = shape;
   s.solver.transfer = TransferKind::PicFlip;
   s.solver.flip = flip;
@@ -87,9 +87,11 @@ TEST(Conservation, RigidTranslationStaysStressFree) {
 
 TEST(Conservation, ScatterIsRepeatableAcrossThreadCounts) {
   const int threads = omp_get_max_threads();
-  // Fine enough (7200 particles) for every loop to go parallel.
-  Simulation a = random_block(ShapeKind::Gimp, 0.99, 0.1);
-  Simulation b = random_block(ShapeKind::Gimp, 0.99, 0.1);
+  // Fine enough (28 800 particles) for every loop to go parallel, and long
+  // enough (a grid box of about 245 cells: eight 32-cell strips of the CPU
+  // scatter, four of each colour) for two threads to scatter side by side.
+  Simulation a = random_block(ShapeKind::Gimp, 0.99, 0.1, 24.0);
+  Simulation b = random_block(ShapeKind::Gimp, 0.99, 0.1, 24.0);
   ASSERT_GT(a.particles().size(), 4096);
   omp_set_num_threads(1);
   for (int k = 0; k < 10; ++k) a.step(1e-3);
