@@ -73,8 +73,8 @@ TEST(ShapeFunctions, GimpIsContinuousAcrossZoneBoundaries) {
   const double h = 1.0, lp = 0.25, eps = 1e-9;
   for (double r : {lp, h - lp, h + lp}) {
     double a, da, b, db;
-    gimp_1d(r - eps, h, lp, a, da);
-    gimp_1d(r + eps, h, lp, b, db);
+    gimp_1d(r - eps, gimp_scale(h, lp), a, da);
+    gimp_1d(r + eps, gimp_scale(h, lp), b, db);
     EXPECT_NEAR(a, b, 1e-8) << "r = " << r;
     EXPECT_NEAR(da, db, 1e-7) << "r = " << r;
   }

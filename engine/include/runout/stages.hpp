@@ -164,16 +164,19 @@ RUNOUT_HD inline void reduce_lattice_basis(double& ax, double& ay, double& bx, d
   // Each pass at least halves the longer vector's excess, so a few dozen
   // passes reach any finite shear; the bound keeps the loop finite on NaN.
   for (int pass = 0; pass < 64; ++pass) {
-    if (ax * ax + ay * ay > bx * bx + by * by) {
-      const double tx = ax, ty = ay;
-      ax = bx;
-      ay = by;
-      bx = tx;
-      by = ty;
-    }
-    const double aa = ax * ax + ay * ay;
-    if (!(aa > 0.0)) return;
-    const double k = std::nearbyint((ax * bx + ay * by) / aa);
+    // The shorter vector first, by selection: in a barely deformed body
+    // which is shorter is a coin toss, and a branch on it was mispredicted.
+    const bool swap = ax * ax + ay * ay > bx * bx + by * by;
+    const double sx = swap ? bx : ax, sy = swap ? by : ay;
+    bx = swap ? ax : bx;
+    by = swap ? ay : by;
+    ax = sx;
+    ay = sy;
+    const double aa = ax * ax + ay * ay, ab = ax * bx + ay * by;
+    // |ab / aa| <= 1/2 rounds to zero: reduced. Tested before dividing,
+    // as nearly every particle's basis is (and nearbyint is a libm call).
+    if (!(aa > 0.0) || !(std::fabs(ab) > 0.5 * aa)) return;
+    const double k = std::nearbyint(ab / aa);
     if (k == 0.0) return;
     bx -= k * ax;
     by -= k * ay;
@@ -189,14 +192,17 @@ RUNOUT_HD inline void domain_half_widths(const ParticleView& P, int p, const Ste
   // a the more nearly horizontal: a_x^2 / |a|^2 >= b_x^2 / |b|^2.
   const bool a_horizontal = ax * ax * (bx * bx + by * by) >= bx * bx * (ax * ax + ay * ay);
   const double wx = std::fabs(a_horizontal ? ax : bx), wy = std::fabs(a_horizontal ? by : ay);
-  const double J = P.vol[p] / P.vol0[p];
-  if (!(J > 0.0 && wx > 0.0 && wy > 0.0)) return;  // the guards stop such a run
+  const double V = P.vol[p];
+  if (!(V > 0.0 && wx > 0.0 && wy > 0.0)) return;  // the guards stop such a run
   const double floor = 1e-3 * c.lp, cap = 0.5 * h;
-  // min and max, not fmin and fmax: the bounds are positive, so the results
-  // are the same to the bit (a NaN width takes the bound either way), and
-  // GCC calls libm for fmin and fmax unless it may assume no NaN.
-  lx = std::min(cap, std::max(floor, c.lp * std::sqrt(J * wx / wy)));
-  ly = std::min(cap, std::max(floor, c.lp * std::sqrt(J * wy / wx)));
+  // lp sqrt(J wx / wy) = wx t and lp sqrt(J wy / wx) = wy t with
+  // t = lp sqrt(J / (wx wy)), J = V / V0: one root and one division.
+  const double t = c.lp * std::sqrt(V / (P.vol0[p] * wx * wy));
+  // min and max, not fmin and fmax: the bounds are positive, so a NaN
+  // width takes the bound either way, and GCC calls libm for fmin and fmax
+  // unless it may assume no NaN.
+  lx = std::min(cap, std::max(floor, t * wx));
+  ly = std::min(cap, std::max(floor, t * wy));
 }
 
 RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
@@ -259,7 +265,10 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, con
   const double m = P.mass[p], V = P.vol[p];
   const bool affine = c.transfer == TransferKind::Apic;
   const AffineVelocity v = particle_velocity(P, p, affine);
-  const double sxx = P.sxx[p], syy = P.syy[p], sxy = P.sxy[p];
+  // The node's force N m g - V sigma grad N, with the particle's factors
+  // V sigma and m g formed once rather than at each of its nine nodes.
+  const double vsxx = V * P.sxx[p], vsyy = V * P.syy[p], vsxy = V * P.sxy[p];
+  const double mgx = m * c.gravity_scale * c.gx, mgy = m * c.gravity_scale * c.gy;
   // Nodes on or inside the base (distance <= 0) are the only ones that read
   // the gap and the volume (geo_contact's interface area), and a particle
   // reaches nodes at most h + lp away along x and y, so at most
@@ -273,15 +282,17 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, con
   }
   for_each_node(g, st, [&](int n, double N, double dNx, double dNy, double rx, double ry) {
     // (no zero-weight test: adding an exact zero changes no sum)
-    add(g.m, n, N * m);
-    add(g.px, n, N * m * (affine ? v.x(rx, ry) : v.vx));
-    add(g.py, n, N * m * (affine ? v.y(rx, ry) : v.vy));
-    add(g.fx, n, -V * (sxx * dNx + sxy * dNy) + N * m * c.gravity_scale * c.gx);
-    add(g.fy, n, -V * (sxy * dNx + syy * dNy) + N * m * c.gravity_scale * c.gy);
-    if (near_base) {
-      add(g.vol, n, N * V);
-      if (N > 0.0) lower(g.gap, n, gap);
-    }
+    const double Nm = N * m;
+    add(g.m, n, Nm);
+    add(g.px, n, Nm * (affine ? v.x(rx, ry) : v.vx));
+    add(g.py, n, Nm * (affine ? v.y(rx, ry) : v.vy));
+    add(g.fx, n, N * mgx - (vsxx * dNx + vsxy * dNy));
+    add(g.fy, n, N * mgy - (vsxy * dNx + vsyy * dNy));
+  });
+  if (!near_base) return;
+  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
+    add(g.vol, n, N * V);
+    if (N > 0.0) lower(g.gap, n, gap);
   });
 }
 
@@ -572,7 +583,6 @@ RUNOUT_HD inline void p2g_smoothed(const ParticleView& P, int p, const Stencil2D
   });
   const double m = P.mass[p];
   for_each_node(g, st, [&](int n, double N, double, double, double, double) {
-    if (N == 0.0) return;
     add(g.px, n, N * m * ux);
     add(g.py, n, N * m * uy);
   });
@@ -600,7 +610,7 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D
   const bool affine = c.transfer == TransferKind::Apic;
   const AffineVelocity v = particle_velocity(P, p, affine);
   for_each_node(g, st, [&](int n, double N, double, double, double rx, double ry) {
-    if (N == 0.0) return;
+    // (no zero-weight test, as in p2g: it was mispredicted a third of the time)
     add(g.px, n, N * m * (affine ? v.x(rx, ry) : v.vx));
     add(g.py, n, N * m * (affine ? v.y(rx, ry) : v.vy));
   });
