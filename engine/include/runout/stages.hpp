@@ -5,9 +5,9 @@
 // call them unchanged.
 //
 // The step is MUSL (modified update-stress-last, Sulsky et al. 1995):
-//   1. p2g:            m_i, p_i = sum N m v, f_i = sum (-V sigma grad N + N m g),
+//   1. p2g:            m_i, p_i = sum N m v, f_i = sum -V sigma grad N,
 //                      gap_i = min over the node's particles of their gap to the base
-//   2. grid_update:    v0_i = p_i/m_i, v_i = v0_i + dt f_i/m_i, Geo-contact with
+//   2. grid_update:    v0_i = p_i/m_i, v_i = v0_i + dt (f_i/m_i + g), Geo-contact with
 //                      the rigid base where the material reaches it, boundary
 //                      conditions
 //   3. g2p:            FLIP, v_p += sum N (v_i - v0_i), with an optional PIC
@@ -265,10 +265,10 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, con
   const double m = P.mass[p], V = P.vol[p];
   const bool affine = c.transfer == TransferKind::Apic;
   const AffineVelocity v = particle_velocity(P, p, affine);
-  // The node's force N m g - V sigma grad N, with the particle's factors
-  // V sigma and m g formed once rather than at each of its nine nodes.
+  // The internal force -V sigma grad N, with V sigma formed once rather
+  // than at each of the nine nodes; gravity is added at the node
+  // (grid_update).
   const double vsxx = V * P.sxx[p], vsyy = V * P.syy[p], vsxy = V * P.sxy[p];
-  const double mgx = m * c.gravity_scale * c.gx, mgy = m * c.gravity_scale * c.gy;
   // Nodes on or inside the base (distance <= 0) are the only ones that read
   // the gap and the volume (geo_contact's interface area), and a particle
   // reaches nodes at most h + lp away along x and y, so at most
@@ -286,8 +286,8 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, con
     add(g.m, n, Nm);
     add(g.px, n, Nm * (affine ? v.x(rx, ry) : v.vx));
     add(g.py, n, Nm * (affine ? v.y(rx, ry) : v.vy));
-    add(g.fx, n, N * mgx - (vsxx * dNx + vsxy * dNy));
-    add(g.fy, n, N * mgy - (vsxy * dNx + vsyy * dNy));
+    add(g.fx, n, -(vsxx * dNx + vsxy * dNy));
+    add(g.fy, n, -(vsxy * dNx + vsyy * dNy));
   });
   if (!near_base) return;
   for_each_node(g, st, [&](int n, double N, double, double, double, double) {
@@ -441,7 +441,11 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
     return;
   }
   double v0x = g.px[n] / m, v0y = g.py[n] / m;
-  double fx = g.fx[n], fy = g.fy[n];
+  // Gravity as m_i g: the same force as the particles' sum N m_p g (their
+  // weights sum their masses into m_i), formed once per node rather than
+  // at each of every particle's nine.
+  const double gs = c.gravity_scale;
+  double fx = g.fx[n] + m * gs * c.gx, fy = g.fy[n] + m * gs * c.gy;
   if (c.damping > 0.0) {
     fx -= c.damping * std::fabs(fx) * (v0x > 0.0 ? 1.0 : (v0x < 0.0 ? -1.0 : 0.0));
     fy -= c.damping * std::fabs(fy) * (v0y > 0.0 ? 1.0 : (v0y < 0.0 ? -1.0 : 0.0));
@@ -533,13 +537,16 @@ RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, con
     P.vy[p] = uy;
     return;
   }
-  double pic_x = 0, pic_y = 0, dvx = 0, dvy = 0;
+  // The change sum N (v - v0) as the difference of the two interpolations:
+  // two sums a node rather than two sums and two differences.
+  double pic_x = 0, pic_y = 0, start_x = 0, start_y = 0;
   for_each_node(g, st, [&](int n, double N, double, double, double, double) {
     pic_x += N * g.vx[n];
     pic_y += N * g.vy[n];
-    dvx += N * (g.vx[n] - g.v0x[n]);
-    dvy += N * (g.vy[n] - g.v0y[n]);
+    start_x += N * g.v0x[n];
+    start_y += N * g.v0y[n];
   });
+  const double dvx = pic_x - start_x, dvy = pic_y - start_y;
   P.vx[p] = c.flip_step * (P.vx[p] + dvx) + (1.0 - c.flip_step) * pic_x;
   P.vy[p] = c.flip_step * (P.vy[p] + dvy) + (1.0 - c.flip_step) * pic_y;
 }
