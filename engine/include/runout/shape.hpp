@@ -35,8 +35,8 @@ RUNOUT_HD inline GimpScale gimp_scale(double h, double lp) {
 // linear hat with a box of width 2 lp (Bardenhagen & Kober 2004, eq. 39,
 // "uGIMP": lp kept at its initial value). Every piece is evaluated and one
 // selected, without branches: a particle's three nodes lie in different
-// pieces, and which ones changes from particle to particle, so branches
-// were mispredicted about once a node. The outer piece, with its bracket
+// pieces, and which ones changes from particle to particle, so a branch
+// on the piece is unpredictable. The outer piece, with its bracket
 // h + lp - |r| held at zero or above, is also the zero beyond the support.
 RUNOUT_HD inline void gimp_1d(double r, const GimpScale& k, double& w, double& dw) {
   const double a = std::fabs(r);
@@ -76,7 +76,7 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
     s.dw[2] = 0.0;
     return;
   }
-  s.first = c - (frac < 0.5 ? 1 : 0);  // arithmetic: a branch here was mispredicted
+  s.first = c - (frac < 0.5 ? 1 : 0);  // arithmetic: a branch here is unpredictable
   s.r0 = origin + s.first * h - xp;
   const GimpScale scale = gimp_scale(h, lp);
   for (int k = 0; k < 3; ++k) {

@@ -165,7 +165,7 @@ RUNOUT_HD inline void reduce_lattice_basis(double& ax, double& ay, double& bx, d
   // passes reach any finite shear; the bound keeps the loop finite on NaN.
   for (int pass = 0; pass < 64; ++pass) {
     // The shorter vector first, by selection: in a barely deformed body
-    // which is shorter is a coin toss, and a branch on it was mispredicted.
+    // which is shorter is a coin toss, and a branch on it unpredictable.
     const bool swap = ax * ax + ay * ay > bx * bx + by * by;
     const double sx = swap ? bx : ax, sy = swap ? by : ay;
     bx = swap ? ax : bx;
@@ -617,7 +617,8 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D
   const bool affine = c.transfer == TransferKind::Apic;
   const AffineVelocity v = particle_velocity(P, p, affine);
   for_each_node(g, st, [&](int n, double N, double, double, double rx, double ry) {
-    // (no zero-weight test, as in p2g: it was mispredicted a third of the time)
+    // (no zero-weight test, as in p2g: whether a weight is zero depends on
+    // where the particle sits in its cell, so the branch was unpredictable)
     add(g.px, n, N * m * (affine ? v.x(rx, ry) : v.vx));
     add(g.py, n, N * m * (affine ? v.y(rx, ry) : v.vy));
   });
