@@ -92,6 +92,10 @@ struct SumOp {
 // warp (__match_any_sync) before one atomic per run.
 struct AtomicAdd {
   __device__ void operator()(double* a, int n, double v) const { atomicAdd(a + n, v); }
+  // A stencil row: its fourth lane's weight is zero, so three atomics.
+  __device__ void operator()(double* a, int n0, const Lanes& v) const {
+    for (int k = 0; k < 3; ++k) atomicAdd(a + n0 + k, v.v[k]);
+  }
 };
 
 // The nodal gap's minimum: CUDA has no double atomicMin, so compare and

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "runout/grid.hpp"
+#include "runout/lanes.hpp"
 #include "runout/material.hpp"
 #include "runout/nonlocal.hpp"
 #include "runout/particles.hpp"

@@ -86,7 +86,7 @@ class OpenMpBackend : public HostBackend {
 
   template <class Stage>
   [[gnu::flatten]] void scatter(const GridView&, const StepConfig&, Stage stage) {
-    const auto add = [](double* a, int n, double v) { a[n] += v; };
+    const PlainAdd add;
     const auto lower = [](double* a, int n, double v) { a[n] = std::min(a[n], v); };
     const Stencil2D* st = stencils_.data();
     for (int colour = 0; colour < 2; ++colour) {

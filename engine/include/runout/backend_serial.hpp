@@ -66,7 +66,7 @@ class SerialDeviceBackend : public HostBackend {
 
   template <class Stage>
   void scatter(const GridView& g, const StepConfig& c, Stage stage) {
-    const auto add = [](double* a, int n, double v) { a[n] += v; };
+    const PlainAdd add;
     const auto lower = [](double* a, int n, double v) { a[n] = std::min(a[n], v); };
     const ParticleView P = particles_.view();
     Stencil2D st;

@@ -36,8 +36,10 @@ struct GridView {
 // Places g's box over the nodes that particles spanning [xmin, xmax] x
 // [ymin, ymax] touch, on the lattice of spacing h through the domain corner
 // (domain_x, domain_y): a particle in cell c touches nodes c-1..c+2 (GIMP),
-// so one ghost node below the span and two above. Sets the sizes and the
-// origin only; the CPU and the CUDA drivers both fit their grids with it.
+// so one ghost node below the span and two above; along x, the rows of the
+// stencil (kStencilNodes) reach c+3 with a zero weight, so one more column.
+// Sets the sizes and the origin only; the CPU and the CUDA drivers both fit
+// their grids with it.
 inline void place_box(GridView& g, double xmin, double xmax, double ymin, double ymax,
                       double domain_x, double domain_y, double h) {
   const auto cell = [h](double v, double origin) {
@@ -45,7 +47,7 @@ inline void place_box(GridView& g, double xmin, double xmax, double ymin, double
   };
   g.i0 = cell(xmin, domain_x) - 1;
   g.j0 = cell(ymin, domain_y) - 1;
-  g.nx = cell(xmax, domain_x) + 2 - g.i0 + 1;
+  g.nx = cell(xmax, domain_x) + 3 - g.i0 + 1;
   g.ny = cell(ymax, domain_y) + 2 - g.j0 + 1;
   g.h = h;
   g.ox = domain_x + g.i0 * h;

@@ -31,6 +31,7 @@
 
 #include "runout/base.hpp"
 #include "runout/grid.hpp"
+#include "runout/lanes.hpp"
 #include "runout/host_device.hpp"
 #include "runout/material.hpp"
 #include "runout/particles.hpp"
@@ -226,12 +227,24 @@ RUNOUT_HD inline void for_each_node(const GridView& g, const Stencil2D& s, F&& f
   }
 }
 
+// The hot stages visit a stencil row by row: f(n0, wy, dwy, ry) for each of
+// its three rows, n0 the row's first node; the row's nodes n0 .. n0 + 3 lie
+// side by side in every nodal array, with weights wx wy and gradients
+// (dwx wy, wx dwy), wx and dwx the stencil's x lanes (Lanes, lanes.hpp).
+// The scatter functor adds a row at once (add(a, n0, lanes)).
+template <class F>
+RUNOUT_HD inline void for_each_row(const GridView& g, const Stencil2D& s, F&& f) {
+  for (int b = 0; b < 3; ++b)
+    f(g.index(s.x.first, s.y.first + b), s.y.w[b], s.y.dw[b], s.y.r0 + b * g.h);
+}
+
 // The particle's velocity at offset (rx, ry) from it: v_p + C_p r, the
 // affine field APIC transfers (C = 0 under PIC/FLIP).
 struct AffineVelocity {
   double vx, vy, cxx, cxy, cyx, cyy;
-  RUNOUT_HD double x(double rx, double ry) const { return vx + cxx * rx + cxy * ry; }
-  RUNOUT_HD double y(double rx, double ry) const { return vy + cyx * rx + cyy * ry; }
+  // At a stencil row's nodes: offsets rx along the row, ry across it.
+  RUNOUT_HD Lanes x(const Lanes& rx, double ry) const { return cxx * rx + (vx + cxy * ry); }
+  RUNOUT_HD Lanes y(const Lanes& rx, double ry) const { return cyx * rx + (vy + cyy * ry); }
 };
 
 RUNOUT_HD inline AffineVelocity affine_velocity(const ParticleView& P, int p) {
@@ -240,7 +253,7 @@ RUNOUT_HD inline AffineVelocity affine_velocity(const ParticleView& P, int p) {
 
 // The velocity a scatter carries: the affine field under APIC; under the
 // other transfers C is zero, so its arrays are not read and the scatters
-// use vx, vy alone, which v.x(r) would equal to the bit.
+// use vx, vy alone, which v.x(rx, ry) would equal to the bit.
 RUNOUT_HD inline AffineVelocity particle_velocity(const ParticleView& P, int p, bool affine) {
   return affine ? affine_velocity(P, p) : AffineVelocity{P.vx[p], P.vy[p], 0.0, 0.0, 0.0, 0.0};
 }
@@ -280,14 +293,16 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, con
     near_base = b.d < std::sqrt(2.0) * (g.h + std::max(st.lx, st.ly));
     gap = particle_gap(st, b);
   }
-  for_each_node(g, st, [&](int n, double N, double dNx, double dNy, double rx, double ry) {
+  const Lanes wx = load_lanes(st.x.w), dwx = load_lanes(st.x.dw);
+  const Lanes rx = lane_offsets(st.x.r0, g.h);
+  for_each_row(g, st, [&](int n0, double wy, double dwy, double ry) {
     // (no zero-weight test: adding an exact zero changes no sum)
-    const double Nm = N * m;
-    add(g.m, n, Nm);
-    add(g.px, n, Nm * (affine ? v.x(rx, ry) : v.vx));
-    add(g.py, n, Nm * (affine ? v.y(rx, ry) : v.vy));
-    add(g.fx, n, -(vsxx * dNx + vsxy * dNy));
-    add(g.fy, n, -(vsxy * dNx + vsyy * dNy));
+    const Lanes Nm = wx * wy * m, dNx = dwx * wy, dNy = wx * dwy;
+    add(g.m, n0, Nm);
+    add(g.px, n0, affine ? Nm * v.x(rx, ry) : Nm * v.vx);
+    add(g.py, n0, affine ? Nm * v.y(rx, ry) : Nm * v.vy);
+    add(g.fx, n0, -(vsxx * dNx + vsxy * dNy));
+    add(g.fy, n0, -(vsxy * dNx + vsyy * dNy));
   });
   if (!near_base) return;
   for_each_node(g, st, [&](int n, double N, double, double, double, double) {
@@ -539,14 +554,17 @@ RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, con
   }
   // The change sum N (v - v0) as the difference of the two interpolations:
   // two sums a node rather than two sums and two differences.
-  double pic_x = 0, pic_y = 0, start_x = 0, start_y = 0;
-  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
-    pic_x += N * g.vx[n];
-    pic_y += N * g.vy[n];
-    start_x += N * g.v0x[n];
-    start_y += N * g.v0y[n];
+  const Lanes wx = load_lanes(st.x.w);
+  Lanes ux = splat(0.0), uy = ux, u0x = ux, u0y = ux;
+  for_each_row(g, st, [&](int n0, double wy, double, double) {
+    const Lanes N = wx * wy;
+    ux = ux + N * load_lanes(g.vx + n0);
+    uy = uy + N * load_lanes(g.vy + n0);
+    u0x = u0x + N * load_lanes(g.v0x + n0);
+    u0y = u0y + N * load_lanes(g.v0y + n0);
   });
-  const double dvx = pic_x - start_x, dvy = pic_y - start_y;
+  const double pic_x = lane_sum(ux), pic_y = lane_sum(uy);
+  const double dvx = pic_x - lane_sum(u0x), dvy = pic_y - lane_sum(u0y);
   P.vx[p] = c.flip_step * (P.vx[p] + dvx) + (1.0 - c.flip_step) * pic_x;
   P.vy[p] = c.flip_step * (P.vy[p] + dvy) + (1.0 - c.flip_step) * pic_y;
 }
@@ -616,11 +634,13 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D
   const double m = P.mass[p];
   const bool affine = c.transfer == TransferKind::Apic;
   const AffineVelocity v = particle_velocity(P, p, affine);
-  for_each_node(g, st, [&](int n, double N, double, double, double rx, double ry) {
+  const Lanes wx = load_lanes(st.x.w), rx = lane_offsets(st.x.r0, g.h);
+  for_each_row(g, st, [&](int n0, double wy, double, double ry) {
     // (no zero-weight test, as in p2g: whether a weight is zero depends on
     // where the particle sits in its cell, so the branch was unpredictable)
-    add(g.px, n, N * m * (affine ? v.x(rx, ry) : v.vx));
-    add(g.py, n, N * m * (affine ? v.y(rx, ry) : v.vy));
+    const Lanes Nm = wx * wy * m;
+    add(g.px, n0, affine ? Nm * v.x(rx, ry) : Nm * v.vx);
+    add(g.py, n0, affine ? Nm * v.y(rx, ry) : Nm * v.vy);
   });
 }
 
@@ -672,26 +692,31 @@ struct VelocityGradient {
 
 // Stage 6a: L from the remapped velocity.
 RUNOUT_HD inline VelocityGradient velocity_gradient(const Stencil2D& st, const GridView& g) {
-  VelocityGradient L{0, 0, 0, 0};
-  for_each_node(g, st, [&](int n, double, double dNx, double dNy, double, double) {
-    L.xx += g.vx[n] * dNx;
-    L.xy += g.vx[n] * dNy;
-    L.yx += g.vy[n] * dNx;
-    L.yy += g.vy[n] * dNy;
+  const Lanes wx = load_lanes(st.x.w), dwx = load_lanes(st.x.dw);
+  Lanes xx = splat(0.0), xy = xx, yx = xx, yy = xx;
+  for_each_row(g, st, [&](int n0, double wy, double dwy, double) {
+    const Lanes dNx = dwx * wy, dNy = wx * dwy;
+    const Lanes ux = load_lanes(g.vx + n0), uy = load_lanes(g.vy + n0);
+    xx = xx + ux * dNx;
+    xy = xy + ux * dNy;
+    yx = yx + uy * dNx;
+    yy = yy + uy * dNy;
   });
-  return L;
+  return {lane_sum(xx), lane_sum(xy), lane_sum(yx), lane_sum(yy)};
 }
 
 // Stage 6b: the step displacement, applied in stress_update.
 RUNOUT_HD inline void displacement(int p, const Stencil2D& st, const GridView& g, double dt,
                                    const StepScratch& s) {
-  double mid_x = 0, mid_y = 0;
-  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
-    mid_x += N * g.vmx[n];
-    mid_y += N * g.vmy[n];
+  const Lanes wx = load_lanes(st.x.w);
+  Lanes mid_x = splat(0.0), mid_y = mid_x;
+  for_each_row(g, st, [&](int n0, double wy, double, double) {
+    const Lanes N = wx * wy;
+    mid_x = mid_x + N * load_lanes(g.vmx + n0);
+    mid_y = mid_y + N * load_lanes(g.vmy + n0);
   });
-  s.dx[p] = dt * mid_x;
-  s.dy[p] = dt * mid_y;
+  s.dx[p] = dt * lane_sum(mid_x);
+  s.dy[p] = dt * lane_sum(mid_y);
 }
 
 // Stage 6c (optional): volumetric locking relief. Undrained clay is nearly
@@ -755,7 +780,8 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Veloci
 
 // Periodic along x, as halo exchange in a domain-decomposed MPM (ExaMPM,
 // Cabana's periodic halos): the box spans the period and one ghost column
-// below it and two above (global columns -1, N and N+1 of N cells), where
+// below it and two above (global columns -1, N and N+1 of N cells), and
+// the spare column of the stencil rows (N+2, never written but by zeros), where
 // the stencils of particles near the seam reach. After a scatter each
 // ghost's sums are added into the column it repeats (N - 1, 0 and 1) and
 // copied back, so the nodes on both sides of the seam hold the same sums;
@@ -766,7 +792,7 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Veloci
 // called for each node row j.
 inline void periodic_span(const StepConfig& c, double h, double& xmin, double& xmax) {
   xmin = c.domain_x0;
-  xmax = c.domain_x0 + c.period - 0.5 * h;  // in the last cell: box columns -1 .. N + 1
+  xmax = c.domain_x0 + c.period - 0.5 * h;  // in the last cell: box columns -1 .. N + 2
 }
 
 // The box columns of the ghosts, and of the columns they repeat.
@@ -775,7 +801,7 @@ struct PeriodicColumns {
 };
 
 RUNOUT_HD inline PeriodicColumns periodic_columns(const GridView& g) {
-  const int n = g.nx - 3;  // cells in the period; box column k is global k - 1
+  const int n = g.nx - 4;  // cells in the period; box column k is global k - 1
   return {{0, n + 1, n + 2}, {n, 1, 2}};
 }
 

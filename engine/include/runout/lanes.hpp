@@ -1,0 +1,98 @@
+#pragma once
+// Four doubles side by side: one row of a particle's stencil (the nodes
+// first .. first + 3 along x of shape.hpp, the fourth with zero weight),
+// which the hot stages compute and add as one value. Under g++ and clang
+// it is a GNU vector, one AVX register (two SSE2 ones on the x86-64
+// baseline): GCC 12 left the same arithmetic, written node by node or as
+// loops over a row, scalar, because the nodal arrays may alias. Under nvcc
+// it is four doubles, each lane a thread's scalar work.
+#include <cstring>
+
+#include "runout/host_device.hpp"
+
+namespace runout {
+
+#if defined(__CUDACC__) || !defined(__GNUC__)
+struct Lanes {
+  double v[4];
+};
+
+RUNOUT_HD inline Lanes load_lanes(const double* a) { return {{a[0], a[1], a[2], a[3]}}; }
+RUNOUT_HD inline Lanes splat(double x) { return {{x, x, x, x}}; }
+RUNOUT_HD inline double lane(const Lanes& a, int k) { return a.v[k]; }
+
+template <class Op>
+RUNOUT_HD inline Lanes lanewise(const Lanes& a, const Lanes& b, Op op) {
+  return {{op(a.v[0], b.v[0]), op(a.v[1], b.v[1]), op(a.v[2], b.v[2]), op(a.v[3], b.v[3])}};
+}
+struct LaneAdd {
+  RUNOUT_HD double operator()(double x, double y) const { return x + y; }
+};
+struct LaneMul {
+  RUNOUT_HD double operator()(double x, double y) const { return x * y; }
+};
+RUNOUT_HD inline Lanes operator+(const Lanes& a, const Lanes& b) { return lanewise(a, b, LaneAdd{}); }
+RUNOUT_HD inline Lanes operator*(const Lanes& a, const Lanes& b) { return lanewise(a, b, LaneMul{}); }
+// a < b ? x : y, lane by lane.
+RUNOUT_HD inline Lanes select_less(const Lanes& a, const Lanes& b, const Lanes& x, const Lanes& y) {
+  Lanes r;
+  for (int k = 0; k < 4; ++k) r.v[k] = a.v[k] < b.v[k] ? x.v[k] : y.v[k];
+  return r;
+}
+#else
+struct Lanes {
+  typedef double Vector __attribute__((vector_size(4 * sizeof(double))));
+  Vector v;
+};
+
+inline Lanes load_lanes(const double* a) {
+  Lanes r;
+  std::memcpy(&r.v, a, sizeof r.v);  // unaligned: a row starts at any node
+  return r;
+}
+inline Lanes splat(double x) { return {Lanes::Vector{x, x, x, x}}; }
+inline double lane(const Lanes& a, int k) { return a.v[k]; }
+inline Lanes operator+(const Lanes& a, const Lanes& b) { return {a.v + b.v}; }
+inline Lanes operator*(const Lanes& a, const Lanes& b) { return {a.v * b.v}; }
+inline Lanes select_less(const Lanes& a, const Lanes& b, const Lanes& x, const Lanes& y) {
+  return {a.v < b.v ? x.v : y.v};
+}
+#endif
+
+RUNOUT_HD inline Lanes operator*(const Lanes& a, double x) { return a * splat(x); }
+RUNOUT_HD inline Lanes operator*(double x, const Lanes& a) { return splat(x) * a; }
+RUNOUT_HD inline Lanes operator+(const Lanes& a, double x) { return a + splat(x); }
+RUNOUT_HD inline Lanes operator+(double x, const Lanes& a) { return splat(x) + a; }
+RUNOUT_HD inline Lanes operator-(const Lanes& a) { return a * -1.0; }
+RUNOUT_HD inline Lanes operator-(double x, const Lanes& a) { return splat(x) + -a; }
+
+// The lanes' sum, in the order ((0 + 1) + 2) + 3.
+RUNOUT_HD inline double lane_sum(const Lanes& a) {
+  return lane(a, 0) + lane(a, 1) + lane(a, 2) + lane(a, 3);
+}
+
+// (x0, x0 + h, x0 + 2 h, x0 + 3 h): the offsets of a row's nodes.
+RUNOUT_HD inline Lanes lane_offsets(double x0, double h) {
+#if defined(__CUDACC__) || !defined(__GNUC__)
+  return {{x0, x0 + h, x0 + 2.0 * h, x0 + 3.0 * h}};
+#else
+  return {Lanes::Vector{x0, x0 + h, x0 + 2.0 * h, x0 + 3.0 * h}};
+#endif
+}
+
+RUNOUT_HD inline void store_lanes(double* a, const Lanes& v) {
+  for (int k = 0; k < 4; ++k) a[k] = lane(v, k);
+}
+
+// The host backends' scatter: plain adds, race-free by the OpenMP
+// backend's colouring and by the serial backend's single thread. A row
+// is added as one vector: four loads, adds and stores become one each.
+struct PlainAdd {
+  void operator()(double* a, int n, double v) const { a[n] += v; }
+  void operator()(double* a, int n0, const Lanes& v) const {
+    const Lanes sum = load_lanes(a + n0) + v;
+    std::memcpy(a + n0, &sum.v, sizeof sum.v);
+  }
+};
+
+}  // namespace runout
