@@ -33,6 +33,13 @@ struct LaneMul {
 };
 RUNOUT_HD inline Lanes operator+(const Lanes& a, const Lanes& b) { return lanewise(a, b, LaneAdd{}); }
 RUNOUT_HD inline Lanes operator*(const Lanes& a, const Lanes& b) { return lanewise(a, b, LaneMul{}); }
+// The lanes' sums of four values, (a0 + a1) + (a2 + a3) for a and so on.
+RUNOUT_HD inline Lanes lane_sums(const Lanes& a, const Lanes& b, const Lanes& c, const Lanes& d) {
+  const Lanes* in[4] = {&a, &b, &c, &d};
+  Lanes r;
+  for (int k = 0; k < 4; ++k) r.v[k] = (in[k]->v[0] + in[k]->v[1]) + (in[k]->v[2] + in[k]->v[3]);
+  return r;
+}
 // a < b ? x : y, lane by lane.
 RUNOUT_HD inline Lanes select_less(const Lanes& a, const Lanes& b, const Lanes& x, const Lanes& y) {
   Lanes r;
@@ -57,6 +64,16 @@ inline Lanes operator*(const Lanes& a, const Lanes& b) { return {a.v * b.v}; }
 inline Lanes select_less(const Lanes& a, const Lanes& b, const Lanes& x, const Lanes& y) {
   return {a.v < b.v ? x.v : y.v};
 }
+// Four horizontal sums at once, as a 4 x 4 transpose: pairs within each
+// vector, then the pairs' halves; one lane's sum alone costs nearly as much.
+inline Lanes lane_sums(const Lanes& a, const Lanes& b, const Lanes& c, const Lanes& d) {
+  // {a0 + a1, b0 + b1, a2 + a3, b2 + b3} and the same of c and d
+  const Lanes::Vector ab = __builtin_shufflevector(a.v, b.v, 0, 4, 2, 6) +
+                           __builtin_shufflevector(a.v, b.v, 1, 5, 3, 7);
+  const Lanes::Vector cd = __builtin_shufflevector(c.v, d.v, 0, 4, 2, 6) +
+                           __builtin_shufflevector(c.v, d.v, 1, 5, 3, 7);
+  return {__builtin_shufflevector(ab, cd, 0, 1, 4, 5) + __builtin_shufflevector(ab, cd, 2, 3, 6, 7)};
+}
 #endif
 
 RUNOUT_HD inline Lanes operator*(const Lanes& a, double x) { return a * splat(x); }
@@ -65,11 +82,7 @@ RUNOUT_HD inline Lanes operator+(const Lanes& a, double x) { return a + splat(x)
 RUNOUT_HD inline Lanes operator+(double x, const Lanes& a) { return splat(x) + a; }
 RUNOUT_HD inline Lanes operator-(const Lanes& a) { return a * -1.0; }
 RUNOUT_HD inline Lanes operator-(double x, const Lanes& a) { return splat(x) + -a; }
-
-// The lanes' sum, in the order ((0 + 1) + 2) + 3.
-RUNOUT_HD inline double lane_sum(const Lanes& a) {
-  return lane(a, 0) + lane(a, 1) + lane(a, 2) + lane(a, 3);
-}
+RUNOUT_HD inline Lanes operator-(const Lanes& a, const Lanes& b) { return a + -b; }
 
 // (x0, x0 + h, x0 + 2 h, x0 + 3 h): the offsets of a row's nodes.
 RUNOUT_HD inline Lanes lane_offsets(double x0, double h) {

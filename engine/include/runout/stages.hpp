@@ -542,19 +542,21 @@ RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, con
     g2p_apic(P, p, st, g);
     return;
   }
+  const Lanes wx = load_lanes(st.x.w);
   if (c.xpic_now) {
-    double ux = 0, uy = 0;
-    for_each_node(g, st, [&](int n, double N, double, double, double, double) {
-      ux += N * (g.vx[n] - g.v0x[n] + g.xvx[n]);
-      uy += N * (g.vy[n] - g.v0y[n] + g.xvy[n]);
+    Lanes ux = splat(0.0), uy = ux;
+    for_each_row(g, st, [&](int n0, double wy, double, double) {
+      const Lanes N = wx * wy;
+      ux = ux + N * (load_lanes(g.vx + n0) - load_lanes(g.v0x + n0) + load_lanes(g.xvx + n0));
+      uy = uy + N * (load_lanes(g.vy + n0) - load_lanes(g.v0y + n0) + load_lanes(g.xvy + n0));
     });
-    P.vx[p] = ux;
-    P.vy[p] = uy;
+    const Lanes u = lane_sums(ux, uy, splat(0.0), splat(0.0));
+    P.vx[p] = lane(u, 0);
+    P.vy[p] = lane(u, 1);
     return;
   }
   // The change sum N (v - v0) as the difference of the two interpolations:
   // two sums a node rather than two sums and two differences.
-  const Lanes wx = load_lanes(st.x.w);
   Lanes ux = splat(0.0), uy = ux, u0x = ux, u0y = ux;
   for_each_row(g, st, [&](int n0, double wy, double, double) {
     const Lanes N = wx * wy;
@@ -563,8 +565,9 @@ RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, con
     u0x = u0x + N * load_lanes(g.v0x + n0);
     u0y = u0y + N * load_lanes(g.v0y + n0);
   });
-  const double pic_x = lane_sum(ux), pic_y = lane_sum(uy);
-  const double dvx = pic_x - lane_sum(u0x), dvy = pic_y - lane_sum(u0y);
+  const Lanes sums = lane_sums(ux, uy, u0x, u0y);
+  const double pic_x = lane(sums, 0), pic_y = lane(sums, 1);
+  const double dvx = pic_x - lane(sums, 2), dvy = pic_y - lane(sums, 3);
   P.vx[p] = c.flip_step * (P.vx[p] + dvx) + (1.0 - c.flip_step) * pic_x;
   P.vy[p] = c.flip_step * (P.vy[p] + dvy) + (1.0 - c.flip_step) * pic_y;
 }
@@ -601,15 +604,19 @@ RUNOUT_HD inline void xpic_start(const GridView& g, int n, const StepConfig& c) 
 template <class Add>
 RUNOUT_HD inline void p2g_smoothed(const ParticleView& P, int p, const Stencil2D& st,
                                    const GridView& g, Add&& add) {
-  double ux = 0, uy = 0;
-  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
-    ux += N * g.qx[n];
-    uy += N * g.qy[n];
+  const Lanes wx = load_lanes(st.x.w);
+  Lanes qx = splat(0.0), qy = qx;
+  for_each_row(g, st, [&](int n0, double wy, double, double) {
+    const Lanes N = wx * wy;
+    qx = qx + N * load_lanes(g.qx + n0);
+    qy = qy + N * load_lanes(g.qy + n0);
   });
-  const double m = P.mass[p];
-  for_each_node(g, st, [&](int n, double N, double, double, double, double) {
-    add(g.px, n, N * m * ux);
-    add(g.py, n, N * m * uy);
+  const Lanes q = lane_sums(qx, qy, splat(0.0), splat(0.0));
+  const double m = P.mass[p], ux = lane(q, 0), uy = lane(q, 1);
+  for_each_row(g, st, [&](int n0, double wy, double, double) {
+    const Lanes Nm = wx * wy * m;
+    add(g.px, n0, Nm * ux);
+    add(g.py, n0, Nm * uy);
   });
 }
 
@@ -702,7 +709,8 @@ RUNOUT_HD inline VelocityGradient velocity_gradient(const Stencil2D& st, const G
     yx = yx + uy * dNx;
     yy = yy + uy * dNy;
   });
-  return {lane_sum(xx), lane_sum(xy), lane_sum(yx), lane_sum(yy)};
+  const Lanes L = lane_sums(xx, xy, yx, yy);
+  return {lane(L, 0), lane(L, 1), lane(L, 2), lane(L, 3)};
 }
 
 // Stage 6b: the step displacement, applied in stress_update.
@@ -715,8 +723,9 @@ RUNOUT_HD inline void displacement(int p, const Stencil2D& st, const GridView& g
     mid_x = mid_x + N * load_lanes(g.vmx + n0);
     mid_y = mid_y + N * load_lanes(g.vmy + n0);
   });
-  s.dx[p] = dt * lane_sum(mid_x);
-  s.dy[p] = dt * lane_sum(mid_y);
+  const Lanes mid = lane_sums(mid_x, mid_y, splat(0.0), splat(0.0));
+  s.dx[p] = dt * lane(mid, 0);
+  s.dy[p] = dt * lane(mid, 1);
 }
 
 // Stage 6c (optional): volumetric locking relief. Undrained clay is nearly
