@@ -238,6 +238,21 @@ RUNOUT_HD inline void for_each_row(const GridView& g, const Stencil2D& s, F&& f)
     f(g.index(s.x.first, s.y.first + b), s.y.w[b], s.y.dw[b], s.y.r0 + b * g.h);
 }
 
+// Two nodal fields interpolated at the particle: sum N a and sum N b.
+RUNOUT_HD inline void interpolate(const GridView& g, const Stencil2D& st, const double* a,
+                                  const double* b, double& at_a, double& at_b) {
+  const Lanes wx = load_lanes(st.x.w);
+  Lanes sa = splat(0.0), sb = sa;
+  for_each_row(g, st, [&](int n0, double wy, double, double) {
+    const Lanes N = wx * wy;
+    sa = sa + N * load_lanes(a + n0);
+    sb = sb + N * load_lanes(b + n0);
+  });
+  const Lanes sums = lane_sums(sa, sb, splat(0.0), splat(0.0));
+  at_a = lane(sums, 0);
+  at_b = lane(sums, 1);
+}
+
 // The particle's velocity at offset (rx, ry) from it: v_p + C_p r, the
 // affine field APIC transfers (C = 0 under PIC/FLIP).
 struct AffineVelocity {
@@ -604,15 +619,10 @@ RUNOUT_HD inline void xpic_start(const GridView& g, int n, const StepConfig& c) 
 template <class Add>
 RUNOUT_HD inline void p2g_smoothed(const ParticleView& P, int p, const Stencil2D& st,
                                    const GridView& g, Add&& add) {
+  double ux, uy;
+  interpolate(g, st, g.qx, g.qy, ux, uy);
+  const double m = P.mass[p];
   const Lanes wx = load_lanes(st.x.w);
-  Lanes qx = splat(0.0), qy = qx;
-  for_each_row(g, st, [&](int n0, double wy, double, double) {
-    const Lanes N = wx * wy;
-    qx = qx + N * load_lanes(g.qx + n0);
-    qy = qy + N * load_lanes(g.qy + n0);
-  });
-  const Lanes q = lane_sums(qx, qy, splat(0.0), splat(0.0));
-  const double m = P.mass[p], ux = lane(q, 0), uy = lane(q, 1);
   for_each_row(g, st, [&](int n0, double wy, double, double) {
     const Lanes Nm = wx * wy * m;
     add(g.px, n0, Nm * ux);
@@ -716,16 +726,10 @@ RUNOUT_HD inline VelocityGradient velocity_gradient(const Stencil2D& st, const G
 // Stage 6b: the step displacement, applied in stress_update.
 RUNOUT_HD inline void displacement(int p, const Stencil2D& st, const GridView& g, double dt,
                                    const StepScratch& s) {
-  const Lanes wx = load_lanes(st.x.w);
-  Lanes mid_x = splat(0.0), mid_y = mid_x;
-  for_each_row(g, st, [&](int n0, double wy, double, double) {
-    const Lanes N = wx * wy;
-    mid_x = mid_x + N * load_lanes(g.vmx + n0);
-    mid_y = mid_y + N * load_lanes(g.vmy + n0);
-  });
-  const Lanes mid = lane_sums(mid_x, mid_y, splat(0.0), splat(0.0));
-  s.dx[p] = dt * lane(mid, 0);
-  s.dy[p] = dt * lane(mid, 1);
+  double mid_x, mid_y;
+  interpolate(g, st, g.vmx, g.vmy, mid_x, mid_y);
+  s.dx[p] = dt * mid_x;
+  s.dy[p] = dt * mid_y;
 }
 
 // Stage 6c (optional): volumetric locking relief. Undrained clay is nearly
