@@ -4,8 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
+#include "runout/particles.hpp"
 #include "runout/shape.hpp"
+#include "runout/stages.hpp"
 
 using namespace runout;
 
@@ -87,4 +91,57 @@ TEST(ShapeFunctions, LinearUsesTheCellsConstantGradient) {
   EXPECT_DOUBLE_EQ(s.w[0], 1.0);
   EXPECT_DOUBLE_EQ(s.dw[0], -2.0);
   EXPECT_DOUBLE_EQ(s.dw[1], 2.0);
+}
+
+// The CPU backend makes the stencils four particles at a time
+// (make_stencils_x4): the same as make_stencil one at a time, to rounding,
+// for bodies stretched, sheared (some past the point where the lattice
+// basis needs reducing, which falls back to make_stencil) and rotated.
+TEST(ShapeFunctions, FourParticleStencilsMatchOneAtATime) {
+  const double h = 0.37, lp = h / 4;
+  GridView g;
+  g.h = h;
+  g.ox = -3.1;
+  g.oy = 0.45;
+  StepConfig c;
+  c.shape = ShapeKind::Gimp;
+  c.domain = DomainKind::Deforming;
+  c.lp = lp;
+  Particles particles;
+  const int n = 4 * 250;
+  particles.resize(n);
+  ParticleView P = particles.view();
+  for (int p = 0; p < n; ++p) {
+    const double s = std::sin(1.7 * p), t = std::cos(2.3 * p);
+    P.x[p] = g.ox + 2.0 * h + 10.0 * h * (0.5 + 0.5 * s);
+    P.y[p] = g.oy + 2.0 * h + 6.0 * h * (0.5 + 0.5 * t);
+    const double gamma = 1.6 * s * t, stretch = 1.0 + 0.3 * t, angle = 0.8 * s;
+    // F = R(angle) [stretch gamma; 0 1 / stretch]
+    const double ca = std::cos(angle), sa = std::sin(angle);
+    P.fxx[p] = ca * stretch;
+    P.fxy[p] = ca * gamma - sa / stretch;
+    P.fyx[p] = sa * stretch;
+    P.fyy[p] = sa * gamma + ca / stretch;
+    P.vol0[p] = 4.0 * lp * lp;
+    P.vol[p] = P.vol0[p] * (1.0 + 0.05 * s);
+  }
+  std::vector<Stencil2D> one(n), four(n);
+  for (int p = 0; p < n; ++p) make_stencil(g, c, P, p, one[p]);
+  for (int p = 0; p < n; p += 4) make_stencils_x4(g, c, P, p, &four[p]);
+  const auto expect_close = [](double a, double b, int p) {
+    EXPECT_NEAR(a, b, 4e-16 * (1.0 + std::fabs(b))) << "particle " << p;
+  };
+  for (int p = 0; p < n; ++p) {
+    for (const auto& [a, b] : {std::pair{&four[p].x, &one[p].x}, std::pair{&four[p].y, &one[p].y}}) {
+      EXPECT_EQ(a->cell, b->cell) << "particle " << p;
+      EXPECT_EQ(a->first, b->first) << "particle " << p;
+      expect_close(a->r0, b->r0, p);
+      for (int k = 0; k < kStencilNodes; ++k) {
+        expect_close(a->w[k], b->w[k], p);
+        expect_close(a->dw[k] * h, b->dw[k] * h, p);
+      }
+    }
+    expect_close(four[p].lx, one[p].lx, p);
+    expect_close(four[p].ly, one[p].ly, p);
+  }
 }

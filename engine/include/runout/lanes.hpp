@@ -6,6 +6,7 @@
 // baseline): GCC 12 left the same arithmetic, written node by node or as
 // loops over a row, scalar, because the nodal arrays may alias. Under nvcc
 // it is four doubles, each lane a thread's scalar work.
+#include <cmath>
 #include <cstring>
 
 #include "runout/host_device.hpp"
@@ -31,8 +32,12 @@ struct LaneAdd {
 struct LaneMul {
   RUNOUT_HD double operator()(double x, double y) const { return x * y; }
 };
+struct LaneDiv {
+  RUNOUT_HD double operator()(double x, double y) const { return x / y; }
+};
 RUNOUT_HD inline Lanes operator+(const Lanes& a, const Lanes& b) { return lanewise(a, b, LaneAdd{}); }
 RUNOUT_HD inline Lanes operator*(const Lanes& a, const Lanes& b) { return lanewise(a, b, LaneMul{}); }
+RUNOUT_HD inline Lanes operator/(const Lanes& a, const Lanes& b) { return lanewise(a, b, LaneDiv{}); }
 // The lanes' sums of four values, (a0 + a1) + (a2 + a3) for a and so on.
 RUNOUT_HD inline Lanes lane_sums(const Lanes& a, const Lanes& b, const Lanes& c, const Lanes& d) {
   const Lanes* in[4] = {&a, &b, &c, &d};
@@ -61,6 +66,7 @@ inline Lanes splat(double x) { return {Lanes::Vector{x, x, x, x}}; }
 inline double lane(const Lanes& a, int k) { return a.v[k]; }
 inline Lanes operator+(const Lanes& a, const Lanes& b) { return {a.v + b.v}; }
 inline Lanes operator*(const Lanes& a, const Lanes& b) { return {a.v * b.v}; }
+inline Lanes operator/(const Lanes& a, const Lanes& b) { return {a.v / b.v}; }
 inline Lanes select_less(const Lanes& a, const Lanes& b, const Lanes& x, const Lanes& y) {
   return {a.v < b.v ? x.v : y.v};
 }
@@ -84,6 +90,27 @@ RUNOUT_HD inline Lanes operator+(double x, const Lanes& a) { return splat(x) + a
 RUNOUT_HD inline Lanes operator-(const Lanes& a) { return a * -1.0; }
 RUNOUT_HD inline Lanes operator-(double x, const Lanes& a) { return splat(x) + -a; }
 RUNOUT_HD inline Lanes operator-(const Lanes& a, const Lanes& b) { return a + -b; }
+RUNOUT_HD inline Lanes operator-(const Lanes& a, double x) { return a + -x; }
+
+RUNOUT_HD inline Lanes operator/(const Lanes& a, double x) { return a / splat(x); }
+RUNOUT_HD inline Lanes operator/(double x, const Lanes& a) { return splat(x) / a; }
+
+// Lane by lane, with the scalar function's result in each lane (both are
+// exact or correctly rounded): one instruction each with AVX.
+inline Lanes sqrt_lanes(const Lanes& a) {
+#if defined(__AVX__) && !defined(__CUDACC__)
+  return {__builtin_ia32_sqrtpd256(a.v)};
+#else
+  return {{std::sqrt(lane(a, 0)), std::sqrt(lane(a, 1)), std::sqrt(lane(a, 2)), std::sqrt(lane(a, 3))}};
+#endif
+}
+inline Lanes floor_lanes(const Lanes& a) {
+#if defined(__AVX__) && !defined(__CUDACC__)
+  return {__builtin_ia32_roundpd256(a.v, 0x09)};  // toward -infinity, no inexact exception
+#else
+  return {{std::floor(lane(a, 0)), std::floor(lane(a, 1)), std::floor(lane(a, 2)), std::floor(lane(a, 3))}};
+#endif
+}
 
 // (x0, x0 + h, x0 + 2 h, x0 + 3 h): the offsets of a row's nodes.
 RUNOUT_HD inline Lanes lane_offsets(double x0, double h) {
@@ -91,6 +118,27 @@ RUNOUT_HD inline Lanes lane_offsets(double x0, double h) {
   return {{x0, x0 + h, x0 + 2.0 * h, x0 + 3.0 * h}};
 #else
   return {Lanes::Vector{x0, x0 + h, x0 + 2.0 * h, x0 + 3.0 * h}};
+#endif
+}
+
+// In place: lane k of v[j] becomes lane j of v[k].
+inline void transpose_lanes(Lanes v[4]) {
+#if defined(__CUDACC__) || !defined(__GNUC__)
+  for (int j = 0; j < 4; ++j)
+    for (int k = j + 1; k < 4; ++k) {
+      const double t = v[j].v[k];
+      v[j].v[k] = v[k].v[j];
+      v[k].v[j] = t;
+    }
+#else
+  const Lanes::Vector t0 = __builtin_shufflevector(v[0].v, v[1].v, 0, 4, 2, 6);
+  const Lanes::Vector t1 = __builtin_shufflevector(v[0].v, v[1].v, 1, 5, 3, 7);
+  const Lanes::Vector t2 = __builtin_shufflevector(v[2].v, v[3].v, 0, 4, 2, 6);
+  const Lanes::Vector t3 = __builtin_shufflevector(v[2].v, v[3].v, 1, 5, 3, 7);
+  v[0].v = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  v[1].v = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  v[2].v = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  v[3].v = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 #endif
 }
 

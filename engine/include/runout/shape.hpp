@@ -26,16 +26,24 @@ struct Stencil1D {
 };
 
 // The factors gimp_1d multiplies by, once per particle and direction: two
-// divisions where the piecewise form divided in each piece it took.
-struct GimpScale {
-  double h, lp;
-  double inv_h;    // 1 / h
-  double inv_hlp;  // 1 / (h lp)
+// divisions where the piecewise form divided in each piece it took. T:
+// double for one particle, Lanes for four (make_stencils_x4, lane k
+// particle k's).
+template <class T>
+struct GimpScaleOf {
+  T h, lp;
+  T inv_h;    // 1 / h
+  T inv_hlp;  // 1 / (h lp)
 };
+using GimpScale = GimpScaleOf<double>;
 
-RUNOUT_HD inline GimpScale gimp_scale(double h, double lp) {
+template <class T>
+RUNOUT_HD inline GimpScaleOf<T> gimp_scale(const T& h, const T& lp) {
   return {h, lp, 1.0 / h, 1.0 / (h * lp)};
 }
+
+RUNOUT_HD inline Lanes as_lanes(double x) { return splat(x); }
+RUNOUT_HD inline Lanes as_lanes(const Lanes& x) { return x; }
 
 // uGIMP weight and derivative for a particle at distance r = xp - xi from a
 // node, cell size h, particle half-width lp <= h/2: the convolution of the
@@ -46,7 +54,8 @@ RUNOUT_HD inline GimpScale gimp_scale(double h, double lp) {
 // ones changes from particle to particle, so a branch on the piece is
 // unpredictable. The outer piece, with its bracket h + lp - |r| held at
 // zero or above, is also the zero beyond the support.
-RUNOUT_HD inline void gimp_lanes(const Lanes& r, const GimpScale& k, Lanes& w, Lanes& dw) {
+template <class T>
+RUNOUT_HD inline void gimp_lanes(const Lanes& r, const GimpScaleOf<T>& k, Lanes& w, Lanes& dw) {
   const Lanes zero = splat(0.0);
   const Lanes a = select_less(r, zero, -r, r);  // |r|
   const Lanes s = select_less(r, zero, splat(-1.0), splat(1.0));
@@ -55,7 +64,7 @@ RUNOUT_HD inline void gimp_lanes(const Lanes& r, const GimpScale& k, Lanes& w, L
   const Lanes w_inner = 1.0 - 0.5 * (r * r + k.lp * k.lp) * k.inv_hlp;
   const Lanes w_linear = 1.0 - a * k.inv_h;
   const Lanes w_outer = 0.25 * b * b * k.inv_hlp;
-  const Lanes lp = splat(k.lp), linear_end = splat(k.h - k.lp);
+  const Lanes lp = as_lanes(k.lp), linear_end = as_lanes(k.h - k.lp);
   w = select_less(a, lp, w_inner, select_less(a, linear_end, w_linear, w_outer));
   const Lanes dw_inner = -r * k.inv_hlp, dw_linear = -s * k.inv_h;
   const Lanes dw_outer = -0.5 * s * b * k.inv_hlp;
@@ -104,6 +113,34 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
   gimp_lanes(r, gimp_scale(h, lp), w, dw);
   store_lanes(s.w, w);
   store_lanes(s.dw, dw);
+}
+
+// stencil_1d (GIMP) of four particles at once: lane k of xp and lp is
+// particle k's, whose stencil goes to out[k]. The same operations, so
+// the same weights to rounding (the compiler may fuse other pairs of
+// them into multiply-adds); a third of the arithmetic, as each gimp_lanes
+// evaluates one node of four particles, not the four of one, whose last
+// is always zero.
+inline void stencil_1d_x4(const Lanes& xp, double origin, double h, const Lanes& lp,
+                          Stencil1D* const out[4]) {
+  const Lanes u = (xp - origin) / h;
+  const Lanes cell = floor_lanes(u);
+  const Lanes first = cell - select_less(u - cell, splat(0.5), splat(1.0), splat(0.0));
+  const Lanes r0 = origin + first * h - xp;
+  const GimpScaleOf<Lanes> k = gimp_scale(splat(h), lp);
+  Lanes w[kStencilNodes], dw[kStencilNodes];
+  for (int j = 0; j < 3; ++j) gimp_lanes(xp - (origin + (first + double(j)) * h), k, w[j], dw[j]);
+  w[3] = dw[3] = splat(0.0);
+  transpose_lanes(w);
+  transpose_lanes(dw);
+  for (int q = 0; q < 4; ++q) {
+    Stencil1D& s = *out[q];
+    s.cell = static_cast<int>(lane(cell, q));
+    s.first = static_cast<int>(lane(first, q));
+    s.r0 = lane(r0, q);
+    store_lanes(s.w, w[q]);
+    store_lanes(s.dw, dw[q]);
+  }
 }
 
 }  // namespace runout

@@ -213,6 +213,66 @@ RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const
   stencil_1d(c.shape, P.y[p], g.oy, g.h, s.ly, s.y);
 }
 
+// domain_half_widths of particles p .. p + 3, lane k particle p + k's, for
+// a basis that needs no reduction (F near a rotation or a stretch: nearly
+// every particle at every step); false where one lane's does, and the
+// caller falls back to domain_half_widths.
+inline bool domain_half_widths_x4(const ParticleView& P, int p, const StepConfig& c, double h,
+                                  Lanes& lx, Lanes& ly) {
+  lx = ly = splat(c.lp);
+  if (c.domain == DomainKind::Fixed || c.shape == ShapeKind::Linear) return true;
+  Lanes ax = load_lanes(P.fxx + p), ay = load_lanes(P.fyx + p);
+  Lanes bx = load_lanes(P.fxy + p), by = load_lanes(P.fyy + p);
+  // reduce_lattice_basis's first pass: the shorter vector first, and the
+  // test that ends it.
+  const Lanes a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
+  const Lanes sx = select_less(b2, a2, bx, ax), sy = select_less(b2, a2, by, ay);
+  bx = select_less(b2, a2, ax, bx);
+  by = select_less(b2, a2, ay, by);
+  ax = sx;
+  ay = sy;
+  const Lanes aa = ax * ax + ay * ay, ab = ax * bx + ay * by;
+  for (int k = 0; k < 4; ++k)
+    if (lane(aa, k) > 0.0 && std::fabs(lane(ab, k)) > 0.5 * lane(aa, k)) return false;
+  const Lanes zero = splat(0.0);
+  const auto abs = [&](const Lanes& v) { return select_less(v, zero, -v, v); };
+  // a the more nearly horizontal (domain_half_widths); a_x^2 |b|^2 < b_x^2
+  // |a|^2 picks b.
+  const Lanes pick_b = select_less(ax * ax * (bx * bx + by * by), bx * bx * (ax * ax + ay * ay),
+                                   splat(1.0), zero);
+  const Lanes wx = abs(select_less(zero, pick_b, bx, ax)), wy = abs(select_less(zero, pick_b, ay, by));
+  const Lanes V = load_lanes(P.vol + p);
+  const double floor = 1e-3 * c.lp, cap = 0.5 * h;
+  const Lanes t = c.lp * sqrt_lanes(V / (load_lanes(P.vol0 + p) * wx * wy));
+  const Lanes mx = select_less(splat(floor), t * wx, t * wx, splat(floor));
+  const Lanes my = select_less(splat(floor), t * wy, t * wy, splat(floor));
+  // Lanes whose V, wx or wy is not positive keep lp, as in domain_half_widths.
+  const Lanes ok = select_less(zero, V, select_less(zero, wx, select_less(zero, wy, splat(1.0), zero), zero),
+                               zero);
+  lx = select_less(zero, ok, select_less(mx, splat(cap), mx, splat(cap)), lx);
+  ly = select_less(zero, ok, select_less(my, splat(cap), my, splat(cap)), ly);
+  return true;
+}
+
+// make_stencil of particles p .. p + 3 into s[0 .. 3] (GIMP; with linear
+// shape functions one at a time).
+inline void make_stencils_x4(const GridView& g, const StepConfig& c, const ParticleView& P, int p,
+                             Stencil2D* s) {
+  Lanes lx, ly;
+  if (c.shape != ShapeKind::Gimp || !domain_half_widths_x4(P, p, c, g.h, lx, ly)) {
+    for (int k = 0; k < 4; ++k) make_stencil(g, c, P, p + k, s[k]);
+    return;
+  }
+  Stencil1D* const x[4] = {&s[0].x, &s[1].x, &s[2].x, &s[3].x};
+  Stencil1D* const y[4] = {&s[0].y, &s[1].y, &s[2].y, &s[3].y};
+  stencil_1d_x4(load_lanes(P.x + p), g.ox, g.h, lx, x);
+  stencil_1d_x4(load_lanes(P.y + p), g.oy, g.h, ly, y);
+  for (int k = 0; k < 4; ++k) {
+    s[k].lx = lane(lx, k);
+    s[k].ly = lane(ly, k);
+  }
+}
+
 // Visits the 3 x 3 nodes of a stencil: f(node, N, dN/dx, dN/dy, rx, ry),
 // with (rx, ry) = x_i - x_p the node's offset from the particle.
 template <class F>
