@@ -11,9 +11,14 @@
 
 #include "runout/host_device.hpp"
 
+// Lanes as four plain doubles: under nvcc and compilers without GNU vectors.
+#if defined(__CUDACC__) || !defined(__GNUC__)
+#define RUNOUT_LANES_SCALAR 1
+#endif
+
 namespace runout {
 
-#if defined(__CUDACC__) || !defined(__GNUC__)
+#ifdef RUNOUT_LANES_SCALAR
 struct Lanes {
   double v[4];
 };
@@ -114,7 +119,7 @@ inline Lanes floor_lanes(const Lanes& a) {
 
 // (x0, x0 + h, x0 + 2 h, x0 + 3 h): the offsets of a row's nodes.
 RUNOUT_HD inline Lanes lane_offsets(double x0, double h) {
-#if defined(__CUDACC__) || !defined(__GNUC__)
+#ifdef RUNOUT_LANES_SCALAR
   return {{x0, x0 + h, x0 + 2.0 * h, x0 + 3.0 * h}};
 #else
   return {Lanes::Vector{x0, x0 + h, x0 + 2.0 * h, x0 + 3.0 * h}};
@@ -123,7 +128,7 @@ RUNOUT_HD inline Lanes lane_offsets(double x0, double h) {
 
 // In place: lane k of v[j] becomes lane j of v[k].
 inline void transpose_lanes(Lanes v[4]) {
-#if defined(__CUDACC__) || !defined(__GNUC__)
+#ifdef RUNOUT_LANES_SCALAR
   for (int j = 0; j < 4; ++j)
     for (int k = j + 1; k < 4; ++k) {
       const double t = v[j].v[k];
@@ -143,7 +148,11 @@ inline void transpose_lanes(Lanes v[4]) {
 }
 
 RUNOUT_HD inline void store_lanes(double* a, const Lanes& v) {
-  for (int k = 0; k < 4; ++k) a[k] = lane(v, k);
+#ifdef RUNOUT_LANES_SCALAR
+  for (int k = 0; k < 4; ++k) a[k] = v.v[k];
+#else
+  std::memcpy(a, &v.v, sizeof v.v);  // one (unaligned) vector store
+#endif
 }
 
 // The host backends' scatter: plain adds, race-free by the OpenMP
@@ -152,8 +161,7 @@ RUNOUT_HD inline void store_lanes(double* a, const Lanes& v) {
 struct PlainAdd {
   void operator()(double* a, int n, double v) const { a[n] += v; }
   void operator()(double* a, int n0, const Lanes& v) const {
-    const Lanes sum = load_lanes(a + n0) + v;
-    std::memcpy(a + n0, &sum.v, sizeof sum.v);
+    store_lanes(a + n0, load_lanes(a + n0) + v);
   }
 };
 
