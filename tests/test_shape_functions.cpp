@@ -73,6 +73,31 @@ TEST(ShapeFunctions, GimpMatchesClosedFormOnNodeAndEdge) {
   EXPECT_NEAR(w4, 0.5, 1e-15);
 }
 
+// A GIMP stencil that starts at the cell's left neighbour (the x rows of
+// the step) has every node's weight and derivative of the nearest-start
+// one, bit for bit, and zero at the node it adds; so it sums to one.
+TEST(ShapeFunctions, CellLeftStartHoldsTheSameWeightsOneNodeOver) {
+  const double h = 0.37, origin = -12.345;
+  for (double lp : {0.125 * h, 0.25 * h, 0.5 * h}) {
+    for (double f : {0.0, 1e-13, 0.1, 0.25, 0.5 - 1e-12, 0.5, 0.5 + 1e-12, 0.75, 0.999}) {
+      const double xp = origin + 2 * h + f * h;
+      Stencil1D nearest, left;
+      stencil_1d(ShapeKind::Gimp, xp, origin, h, lp, nearest, StencilStart::Nearest);
+      stencil_1d(ShapeKind::Gimp, xp, origin, h, lp, left, StencilStart::CellLeft);
+      EXPECT_EQ(left.first, left.cell - 1);
+      double sum = 0;
+      for (int k = 0; k < kStencilNodes; ++k) {
+        sum += left.w[k];
+        const int in_nearest = left.first + k - nearest.first;
+        const bool touched = in_nearest >= 0 && in_nearest < 3;
+        EXPECT_EQ(left.w[k], touched ? nearest.w[in_nearest] : 0.0) << "f = " << f << ", k = " << k;
+        EXPECT_EQ(left.dw[k], touched ? nearest.dw[in_nearest] : 0.0) << "f = " << f << ", k = " << k;
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-14) << "f = " << f;
+    }
+  }
+}
+
 TEST(ShapeFunctions, GimpIsContinuousAcrossZoneBoundaries) {
   const double h = 1.0, lp = 0.25, eps = 1e-9;
   for (double r : {lp, h - lp, h + lp}) {

@@ -92,9 +92,11 @@ struct SumOp {
 // warp (__match_any_sync) before one atomic per run.
 struct AtomicAdd {
   __device__ void operator()(double* a, int n, double v) const { atomicAdd(a + n, v); }
-  // A stencil row: its fourth lane's weight is zero, so three atomics.
+  // A stencil row: one of its four lanes has zero weight (shape.hpp), so
+  // three atomics; an exact zero added would change no sum.
   __device__ void operator()(double* a, int n0, const Lanes& v) const {
-    for (int k = 0; k < 3; ++k) atomicAdd(a + n0 + k, v.v[k]);
+    for (int k = 0; k < 4; ++k)
+      if (v.v[k] != 0.0) atomicAdd(a + n0 + k, v.v[k]);
   }
 };
 

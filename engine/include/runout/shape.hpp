@@ -11,17 +11,29 @@
 
 namespace runout {
 
-// The nodes a particle sees along one direction, first .. first + 2, and a
-// fourth, first + 3, whose weight and derivative are always zero: a row of
-// the stencil is then four nodes, one AVX register of doubles (lanes.hpp;
-// the grid box has a column to spare for it, place_box).
+// The nodes a particle sees along one direction, four in a row: one AVX
+// register of doubles (lanes.hpp). Where they start (StencilStart):
+// Nearest, at the neighbour on the nearer side of the particle's cell c,
+// first = c - 1 or c, so the three nodes it touches come first and the
+// fourth's weight is zero (the grid box has a column to spare for it,
+// place_box); CellLeft, at c - 1 whatever the particle's place in its cell,
+// so the four nodes c - 1 .. c + 2 hold the three it touches and a zero at
+// one end. Along x (the lanes of a stencil row) GIMP stencils start
+// CellLeft: every particle of a cell then adds into the same four doubles
+// of a row, where with Nearest the particles of a cell's two halves added
+// into rows one node apart, and a row loaded just after the previous
+// particle's store of the row one node over cannot be forwarded from the
+// store (it partly overlaps it) but waits for it to reach the cache. Along
+// y (across the rows) they start Nearest: three rows, not four.
 constexpr int kStencilNodes = 4;
+
+enum class StencilStart { Nearest, CellLeft };
 
 struct Stencil1D {
   int cell;                  // grid index of the cell the particle is in
   int first;                 // grid index of the stencil's first node
   double r0;                 // that node's offset from the particle, x_first - xp
-  double w[kStencilNodes];   // weights of nodes first .. first + 3
+  double w[kStencilNodes];   // weights of nodes first .. first + 3 (one of them zero)
   double dw[kStencilNodes];  // their derivatives d/dx
 };
 
@@ -81,12 +93,14 @@ RUNOUT_HD inline void gimp_1d(double r, const GimpScale& k, double& w, double& d
 
 // Stencil of a particle at xp on the grid whose node 0 lies at origin.
 // GIMP support reaches h + lp <= 1.5 h from the particle, so three nodes
-// suffice: the cell's two nodes and the neighbour on the nearer side.
-// Linear MPM uses the cell's two nodes with the cell's constant gradient,
-// which keeps the gradient sum at exactly zero on a node (where the hat's
-// derivative is undefined); its third weight is zero.
+// suffice: the cell's two nodes and the neighbour on the nearer side
+// (start: where the four start, StencilStart). Linear MPM uses the cell's
+// two nodes with the cell's constant gradient, which keeps the gradient
+// sum at exactly zero on a node (where the hat's derivative is undefined);
+// its third and fourth weights are zero.
 RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, double h,
-                                 double lp, Stencil1D& s) {
+                                 double lp, Stencil1D& s,
+                                 StencilStart start = StencilStart::Nearest) {
   const double u = (xp - origin) / h;
   const double cell = std::floor(u);
   const double frac = u - cell;
@@ -104,10 +118,11 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
     s.w[3] = s.dw[3] = 0.0;
     return;
   }
-  s.first = c - (frac < 0.5 ? 1 : 0);  // arithmetic: a branch here is unpredictable
+  // arithmetic: a branch here is unpredictable
+  s.first = c - (start == StencilStart::CellLeft || frac < 0.5 ? 1 : 0);
   s.r0 = origin + s.first * h - xp;
-  // The fourth node is at least 1.5 h >= h + lp away: outside the support,
-  // its weight and derivative are zero.
+  // The node of the four that is not in the stencil is at least h + lp
+  // away: outside the support, its weight and derivative are zero.
   const Lanes r = xp - (origin + lane_offsets(s.first, 1.0) * h);
   Lanes w, dw;
   gimp_lanes(r, gimp_scale(h, lp), w, dw);
@@ -122,15 +137,19 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
 // evaluates one node of four particles, not the four of one, whose last
 // is always zero.
 inline void stencil_1d_x4(const Lanes& xp, double origin, double h, const Lanes& lp,
-                          Stencil1D* const out[4]) {
+                          StencilStart start, Stencil1D* const out[4]) {
   const Lanes u = (xp - origin) / h;
   const Lanes cell = floor_lanes(u);
-  const Lanes first = cell - select_less(u - cell, splat(0.5), splat(1.0), splat(0.0));
+  const Lanes first = start == StencilStart::CellLeft
+                          ? cell - 1.0
+                          : cell - select_less(u - cell, splat(0.5), splat(1.0), splat(0.0));
   const Lanes r0 = origin + first * h - xp;
   const GimpScaleOf<Lanes> k = gimp_scale(splat(h), lp);
   Lanes w[kStencilNodes], dw[kStencilNodes];
-  for (int j = 0; j < 3; ++j) gimp_lanes(xp - (origin + (first + double(j)) * h), k, w[j], dw[j]);
-  w[3] = dw[3] = splat(0.0);
+  // Nearest: the fourth node is always outside the support.
+  const int nodes = start == StencilStart::CellLeft ? 4 : 3;
+  for (int j = 0; j < nodes; ++j) gimp_lanes(xp - (origin + (first + double(j)) * h), k, w[j], dw[j]);
+  if (nodes == 3) w[3] = dw[3] = splat(0.0);
   transpose_lanes(w);
   transpose_lanes(dw);
   for (int q = 0; q < 4; ++q) {

@@ -209,8 +209,8 @@ RUNOUT_HD inline void domain_half_widths(const ParticleView& P, int p, const Ste
 RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
                                    int p, Stencil2D& s) {
   domain_half_widths(P, p, c, g.h, s.lx, s.ly);
-  stencil_1d(c.shape, P.x[p], g.ox, g.h, s.lx, s.x);
-  stencil_1d(c.shape, P.y[p], g.oy, g.h, s.ly, s.y);
+  stencil_1d(c.shape, P.x[p], g.ox, g.h, s.lx, s.x, StencilStart::CellLeft);
+  stencil_1d(c.shape, P.y[p], g.oy, g.h, s.ly, s.y, StencilStart::Nearest);
 }
 
 // domain_half_widths of particles p .. p + 3, lane k particle p + k's, for
@@ -265,21 +265,22 @@ inline void make_stencils_x4(const GridView& g, const StepConfig& c, const Parti
   }
   Stencil1D* const x[4] = {&s[0].x, &s[1].x, &s[2].x, &s[3].x};
   Stencil1D* const y[4] = {&s[0].y, &s[1].y, &s[2].y, &s[3].y};
-  stencil_1d_x4(load_lanes(P.x + p), g.ox, g.h, lx, x);
-  stencil_1d_x4(load_lanes(P.y + p), g.oy, g.h, ly, y);
+  stencil_1d_x4(load_lanes(P.x + p), g.ox, g.h, lx, StencilStart::CellLeft, x);
+  stencil_1d_x4(load_lanes(P.y + p), g.oy, g.h, ly, StencilStart::Nearest, y);
   for (int k = 0; k < 4; ++k) {
     s[k].lx = lane(lx, k);
     s[k].ly = lane(ly, k);
   }
 }
 
-// Visits the 3 x 3 nodes of a stencil: f(node, N, dN/dx, dN/dy, rx, ry),
-// with (rx, ry) = x_i - x_p the node's offset from the particle.
+// Visits the 4 x 3 nodes of a stencil (one of each row's four has zero
+// weight): f(node, N, dN/dx, dN/dy, rx, ry), with (rx, ry) = x_i - x_p the
+// node's offset from the particle.
 template <class F>
 RUNOUT_HD inline void for_each_node(const GridView& g, const Stencil2D& s, F&& f) {
   for (int b = 0; b < 3; ++b) {
     const double ry = s.y.r0 + b * g.h;
-    for (int a = 0; a < 3; ++a) {
+    for (int a = 0; a < kStencilNodes; ++a) {
       const int node = g.index(s.x.first + a, s.y.first + b);
       f(node, s.x.w[a] * s.y.w[b], s.x.dw[a] * s.y.w[b], s.x.w[a] * s.y.dw[b], s.x.r0 + a * g.h,
         ry);
