@@ -96,7 +96,11 @@ RUNOUT_HD inline void tresca_update(const MaterialParams& m, const StrainIncreme
   const double center = 0.5 * (s.sxx + s.syy);
   const double radius_x = 0.5 * (s.sxx - s.syy);
   const double tau_trial = std::sqrt(radius_x * radius_x + s.sxy * s.sxy);
-  const double su_trial = strength(p, k, s.xi);
+  // S: the softening at xi + dxi; the iteration starts at dxi = 0 from the
+  // trial's, one exp fewer a yielding particle (xi + 0 = xi, and the
+  // softening of -0 and +0 is one).
+  double S = softening(p, s.xi);
+  const double su_trial = strength_at(p, k, S);
   if (tau_trial <= su_trial) {
     s.su = su_trial;
     return;
@@ -107,7 +111,6 @@ RUNOUT_HD inline void tresca_update(const MaterialParams& m, const StrainIncreme
   const double G = m.shear;
   double lo = 0.0, hi = tau_trial / G, dxi = 0.0, su = su_trial;
   for (int it = 1;; ++it) {
-    const double S = softening(p, s.xi + dxi);
     su = strength_at(p, k, S);
     const double g = tau_trial - G * dxi - su;
     if (std::fabs(g) <= kTolerance * su || it == kMaxIterations) break;
@@ -120,6 +123,7 @@ RUNOUT_HD inline void tresca_update(const MaterialParams& m, const StrainIncreme
     }
     if (next == dxi) break;  // the bracket has shrunk to rounding
     dxi = next;
+    S = softening(p, s.xi + dxi);
   }
 
   const double scale = (tau_trial - G * dxi) / tau_trial;
