@@ -2,10 +2,13 @@
 // output folder left behind by a bad scene, and a small run's outputs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "cli_runner.hpp"
 
@@ -89,6 +92,31 @@ TEST_F(Cli, CheckPrintsTheResolvedSceneAndSizes) {
   EXPECT_NE(r.output.find("# particles:        128"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("grid.cell_size = 0.25"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("initial dt"), std::string::npos);
+}
+
+// Without --threads a run takes one thread per 25 000 particles (at most
+// every core): on small scenes a second thread cost more than it brought
+// (engine/cli/thread_count.hpp). OMP_NUM_THREADS, where set, stands.
+TEST_F(Cli, ThreadsFollowTheSceneSizeUnlessTheUserSays) {
+  const char* user = std::getenv("OMP_NUM_THREADS");
+  const std::string saved = user ? user : "";
+  unsetenv("OMP_NUM_THREADS");
+  const std::string small = write("small.toml", kSmallScene);
+  const Result by_size = run_cli("run " + small + " --out " + (dir_ / "a").string());
+  const Result given = run_cli("run " + small + " --threads 2 --out " + (dir_ / "b").string());
+  // The default scene at 0.1 m cells: 80 000 particles, three threads' worth.
+  const Result large = run_cli("check --cell 0.1");
+  setenv("OMP_NUM_THREADS", "2", 1);
+  const Result from_env = run_cli("run " + small + " --out " + (dir_ / "c").string());
+  if (user) setenv("OMP_NUM_THREADS", saved.c_str(), 1); else unsetenv("OMP_NUM_THREADS");
+  ASSERT_EQ(by_size.code, 0) << by_size.output;
+  EXPECT_NE(by_size.output.find(", 1 threads)"), std::string::npos) << by_size.output;
+  EXPECT_NE(given.output.find(", 2 threads)"), std::string::npos) << given.output;
+  EXPECT_NE(from_env.output.find(", 2 threads)"), std::string::npos) << from_env.output;
+  ASSERT_EQ(large.code, 0) << large.output;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string expected = "on " + std::to_string(std::min(3, cores)) + " thread(s) here";
+  EXPECT_NE(large.output.find(expected), std::string::npos) << large.output;
 }
 
 TEST_F(Cli, RunWritesFramesIndexHistoryAndResolvedScene) {

@@ -26,6 +26,7 @@
 #include "budget_check.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
+#include "thread_count.hpp"
 #include "study_command.hpp"
 #include "runout/analysis/final_mechanism.hpp"
 #include "runout/checkpoint.hpp"
@@ -164,9 +165,13 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
 // Wall time of the check's own measurement of the step.
 constexpr double kWallEstimateSeconds = 0.1;
 
-int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args) {
+int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args,
+          bool default_threads) {
   require_memory(s, s.method);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, nullptr), source);
+  const MemoryEstimate memory = estimate_memory(s, s.method);
+  // The threads a run of the scene would use, for the wall-time estimate.
+  if (default_threads) cli::use_default_threads(memory.items);
   const RunCost cost = estimate_cost(s, s.method);
   Simulation sim(s);
   const double dt = sim.stable_dt();
@@ -174,7 +179,6 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
   const double h = s.grid.cell_size;
   const long cells = std::lround((s.grid.max.x() - s.grid.min.x()) / h) *
                      std::lround((s.grid.max.y() - s.grid.min.y()) / h);
-  const MemoryEstimate memory = estimate_memory(s, s.method);
   const std::optional<double> available = available_memory();
   std::cout << to_toml(s) << "\n# particles:        " << n << "\n# domain cells:     " << cells
             << "\n# initial dt:       " << dt << " s (Courant " << s.time.courant << ")"
@@ -311,7 +315,7 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
 
 int run(const Scene& s, const SceneSource& source, const std::string& out,
         const std::string& backend, bool quiet, double checkpoint_every,
-        const LimitArgs& limit_args) {
+        const LimitArgs& limit_args, bool default_threads) {
   if (checkpoint_every > 0 && s.method == Method::Dam) {
     std::cerr << "runout: --checkpoint-every: the depth-averaged model (method = dam) writes "
                  "no checkpoints\n";
@@ -328,11 +332,20 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
   opt.checkpoint_every = checkpoint_every;
   require_memory(s, s.method);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, &opt.out_dir), source);
+  if (default_threads) cli::use_default_threads(estimate_memory(s, s.method).items);
   return execute([&](const RunOptions& o) { return runner(s, o); }, opt, quiet,
                  s.method == Method::Dam);
 }
 
-int resume(const std::string& dir, const std::string& backend, bool quiet) {
+int resume(const std::string& dir, const std::string& backend, bool quiet,
+           bool default_threads) {
+  // Sized by the run's resolved scene; where it cannot be read every core
+  // stays, and the resume itself says what is wrong with the folder.
+  if (default_threads) try {
+      const Scene s = load_scene_file((std::filesystem::path(dir) / "scene.resolved.toml").string());
+      cli::use_default_threads(estimate_memory(s, s.method).items);
+    } catch (const std::exception&) {
+    }
   std::string why_not;
   const Resumer resumer = mpm_backend(backend, why_not).resume;
   if (!resumer) {
@@ -400,7 +413,7 @@ int main(int argc, char** argv) {
   add_scene_args(run_cmd, run_args);
   add_limit_args(run_cmd, run_limits);
   run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)");
-  run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")
+  run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores; OMP_NUM_THREADS if set)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
   std::string backend = "cpu";
@@ -415,7 +428,7 @@ int main(int argc, char** argv) {
   CLI::App* resume_cmd = app.add_subcommand(
       "resume", "Continue a run from the checkpoint.bin in its output folder");
   resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")->required();
-  resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")
+  resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores; OMP_NUM_THREADS if set)")
       ->check(CLI::PositiveNumber);
   resume_cmd->add_flag("-q,--quiet", quiet, "No progress output");
   resume_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
@@ -454,10 +467,10 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd)
       return run(load(run_args), source_of(run_args), out, backend, quiet, checkpoint_every,
-                 run_limits);
-    if (*resume_cmd) return resume(resume_dir, backend, quiet);
+                 run_limits, threads <= 0);
+    if (*resume_cmd) return resume(resume_dir, backend, quiet, threads <= 0);
     if (*check_cmd && budget) return budget_check(load(check_args), *budget);
-    if (*check_cmd) return check(load(check_args), source_of(check_args), check_limits);
+    if (*check_cmd) return check(load(check_args), source_of(check_args), check_limits, true);
     if (*study_cmd) return run_study(study_args);
     if (*verify_cmd) return verify(verify_dir);
     if (*analyse_cmd) return run_analyse(analyse_args);
