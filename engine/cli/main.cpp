@@ -165,13 +165,12 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
 // Wall time of the check's own measurement of the step.
 constexpr double kWallEstimateSeconds = 0.1;
 
-int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args,
-          bool default_threads) {
+int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args) {
   require_memory(s, s.method);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, nullptr), source);
   const MemoryEstimate memory = estimate_memory(s, s.method);
   // The threads a run of the scene would use, for the wall-time estimate.
-  if (default_threads) cli::use_default_threads(memory.items);
+  cli::use_default_threads(memory.items);
   const RunCost cost = estimate_cost(s, s.method);
   Simulation sim(s);
   const double dt = sim.stable_dt();
@@ -341,11 +340,13 @@ int resume(const std::string& dir, const std::string& backend, bool quiet,
            bool default_threads) {
   // Sized by the run's resolved scene; where it cannot be read every core
   // stays, and the resume itself says what is wrong with the folder.
-  if (default_threads) try {
+  if (default_threads) {
+    try {
       const Scene s = load_scene_file((std::filesystem::path(dir) / "scene.resolved.toml").string());
       cli::use_default_threads(estimate_memory(s, s.method).items);
     } catch (const std::exception&) {
     }
+  }
   std::string why_not;
   const Resumer resumer = mpm_backend(backend, why_not).resume;
   if (!resumer) {
@@ -470,7 +471,7 @@ int main(int argc, char** argv) {
                  run_limits, threads <= 0);
     if (*resume_cmd) return resume(resume_dir, backend, quiet, threads <= 0);
     if (*check_cmd && budget) return budget_check(load(check_args), *budget);
-    if (*check_cmd) return check(load(check_args), source_of(check_args), check_limits, true);
+    if (*check_cmd) return check(load(check_args), source_of(check_args), check_limits);
     if (*study_cmd) return run_study(study_args);
     if (*verify_cmd) return verify(verify_dir);
     if (*analyse_cmd) return run_analyse(analyse_args);
