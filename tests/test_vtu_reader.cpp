@@ -62,8 +62,10 @@ std::string frame_text(const ScratchFolder& dir, const runout::Particles& p, boo
   return read_file(path);
 }
 
+template <class Values>
 void expect_array(const VtuFrame& f, const char* name, const std::string& type, int components,
-                  const std::vector<double>& values) {
+                  const Values& expected) {
+  const std::vector<double> values(expected.begin(), expected.end());
   SCOPED_TRACE(name);
   const VtuArray* a = f.point_array(name);
   ASSERT_NE(a, nullptr);
@@ -167,7 +169,7 @@ TEST(VtuReader, RoundTripsTheEnginesFrameCompressedAndNot) {
   // 5000 particles: the vector arrays span four zlib blocks of 32 KiB.
   const runout::Particles p = particles(5000);
   const int n = p.size();
-  auto xyz = [&](const std::vector<double>& a, const std::vector<double>& b) {
+  auto xyz = [&](const auto& a, const auto& b) {
     std::vector<double> out;
     for (int i = 0; i < n; ++i) out.insert(out.end(), {a[i], b[i], 0.0});
     return out;

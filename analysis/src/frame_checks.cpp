@@ -13,7 +13,7 @@ namespace {
 // 0.5 m bins is 2e4), well short of exhausting memory (48 B each).
 constexpr double kMaxProfileBins = 1e6;
 
-double span(const std::vector<double>& x, const std::vector<double>& y) {
+double span(const runout::StaggeredArray& x, const runout::StaggeredArray& y) {
   const auto [x_lo, x_hi] = std::minmax_element(x.begin(), x.end());
   const auto [y_lo, y_hi] = std::minmax_element(y.begin(), y.end());
   return std::hypot(*x_hi - *x_lo, *y_hi - *y_lo);

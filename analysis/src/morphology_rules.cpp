@@ -103,13 +103,16 @@ runout::Particles morphology_particles(const std::vector<double>& xyz,
                                        const std::vector<double>& mass, int mass_components,
                                        const std::vector<double>& initial, int initial_components) {
   runout::Particles p;
-  p.x = component_of(xyz, 3, 0);
-  p.y = component_of(xyz, 3, 1);
-  p.vx = component_of(velocity, velocity_components, 0);
-  p.vy = component_of(velocity, velocity_components, 1);
-  p.mass = component_of(mass, mass_components, 0);
-  p.x0 = component_of(initial, initial_components, 0);
-  p.y0 = component_of(initial, initial_components, 1);
+  const auto set = [](runout::StaggeredArray& to, const std::vector<double>& from) {
+    to.assign(from.begin(), from.end());
+  };
+  set(p.x, component_of(xyz, 3, 0));
+  set(p.y, component_of(xyz, 3, 1));
+  set(p.vx, component_of(velocity, velocity_components, 0));
+  set(p.vy, component_of(velocity, velocity_components, 1));
+  set(p.mass, component_of(mass, mass_components, 0));
+  set(p.x0, component_of(initial, initial_components, 0));
+  set(p.y0, component_of(initial, initial_components, 1));
   return p;
 }
 

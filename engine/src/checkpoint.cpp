@@ -54,8 +54,8 @@ class Writer {
     put<std::uint64_t>(text.size());
     out_.append(text);
   }
-  template <class T>
-  void put_array(const std::vector<T>& a) {
+  template <class T, class A>
+  void put_array(const std::vector<T, A>& a) {
     out_.append(reinterpret_cast<const char*>(a.data()), a.size() * sizeof(T));
   }
   std::string& bytes() { return out_; }
@@ -79,8 +79,8 @@ class Reader {
     if (n > in_.size() - pos_) fail("a text longer than the file");
     return std::string(take(n), n);
   }
-  template <class T>
-  void get_array(std::vector<T>& a, std::size_t n) {
+  template <class T, class A>
+  void get_array(std::vector<T, A>& a, std::size_t n) {
     a.resize(n);
     std::memcpy(a.data(), take(n * sizeof(T)), n * sizeof(T));
   }

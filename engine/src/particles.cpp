@@ -2,14 +2,14 @@
 
 namespace runout {
 
-std::array<std::vector<double>*, kParticleDoubles> Particles::double_arrays() {
+std::array<StaggeredArray*, kParticleDoubles> Particles::double_arrays() {
   return {&x,   &y,   &vx,  &vy,  &mass, &vol0, &vol, &sxx, &syy, &sxy, &szz, &xi,
           &gamma_dot, &su, &x0, &y0, &cxx, &cxy, &cyx, &cyy, &fxx, &fxy, &fyx, &fyy};
 }
 
-std::array<const std::vector<double>*, kParticleDoubles> Particles::double_arrays() const {
+std::array<const StaggeredArray*, kParticleDoubles> Particles::double_arrays() const {
   const auto a = const_cast<Particles*>(this)->double_arrays();
-  std::array<const std::vector<double>*, kParticleDoubles> out;
+  std::array<const StaggeredArray*, kParticleDoubles> out;
   for (std::size_t k = 0; k < a.size(); ++k) out[k] = a[k];
   return out;
 }
@@ -25,8 +25,8 @@ void Particles::resize(int n) {
 
 namespace {
 
-template <class T>
-void gather(std::vector<T>& a, const std::vector<int>& order, std::vector<T>& scratch) {
+template <class Array>
+void gather(Array& a, const std::vector<int>& order, Array& scratch) {
   scratch.resize(a.size());
   for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = a[order[k]];
   a.swap(scratch);
@@ -35,7 +35,7 @@ void gather(std::vector<T>& a, const std::vector<int>& order, std::vector<T>& sc
 }  // namespace
 
 void Particles::permute(const std::vector<int>& order) {
-  std::vector<double> d;
+  StaggeredArray d;
   for (auto* a : double_arrays()) gather(*a, order, d);
   std::vector<int> i;
   gather(body, order, i);

@@ -58,7 +58,7 @@ void write_particles_vtu(const std::string& path, const Particles& p,
   auto array = [&](const char* name, int components, const auto& values) {
     append_array(xml, "        ", name, components, values, compress);
   };
-  auto in_plane = [n](const std::vector<double>& a, const std::vector<double>& b) {
+  auto in_plane = [n](const StaggeredArray& a, const StaggeredArray& b) {
     return tuples<3>(n, [&](int i) { return std::array<double, 3>{a[i], b[i], 0.0}; });
   };
   auto invariant = [n, &p](double (*value_of)(const Particles&, int)) {

@@ -73,9 +73,10 @@ class HostBackend {
   Grid grid_;
   std::vector<MaterialParams> materials_;
   std::vector<double> lengths_;
-  std::vector<double> dx_, dy_, lxx_, lxy_, lyx_, lyy_;
-  std::vector<double> xi_start_, xi_local_, xi_average_;  // nonlocal runs only
-  std::vector<double> cell_volume_, cell_mean_;  // per cell of the grid box
+  // Staggered in their pages (staggered_allocator.hpp), as the particles'.
+  StaggeredArray dx_, dy_, lxx_, lxy_, lyx_, lyy_;
+  StaggeredArray xi_start_, xi_local_, xi_average_;  // nonlocal runs only
+  StaggeredArray cell_volume_, cell_mean_;  // per cell of the grid box
 };
 
 }  // namespace runout

@@ -8,6 +8,7 @@
 
 #include "runout/host_device.hpp"
 #include "runout/kinds.hpp"
+#include "runout/staggered_allocator.hpp"
 
 namespace runout {
 
@@ -66,7 +67,9 @@ class Grid {
 
  private:
   GridView view_;
-  std::vector<double> m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_, fbase_,
+  // Staggered in their pages (staggered_allocator.hpp): p2g adds rows of
+  // m, px, py, fx and fy at the same nodes, one after another.
+  StaggeredArray m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_, fbase_,
       gap_, stuck_, qx_, qy_, xvx_, xvy_;
 };
 

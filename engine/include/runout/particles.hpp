@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "runout/staggered_allocator.hpp"
+
 namespace runout {
 
 struct ParticleView {
@@ -35,15 +37,17 @@ struct ParticleView {
 constexpr int kParticleDoubles = 24;
 
 struct Particles {
-  std::vector<double> x, y, vx, vy, mass, vol0, vol, sxx, syy, sxy, szz, xi,
-      gamma_dot, su, x0, y0, cxx, cxy, cyx, cyy, fxx, fxy, fyx, fyy;
+  // Staggered in their pages (staggered_allocator.hpp): the stress update
+  // loads and stores a dozen of them at one index.
+  StaggeredArray x, y, vx, vy, mass, vol0, vol, sxx, syy, sxy, szz, xi, gamma_dot, su, x0, y0, cxx,
+      cxy, cyx, cyy, fxx, fxy, fyx, fyy;
   std::vector<int> body, material;
   std::vector<std::int64_t> id;
 
   int size() const { return static_cast<int>(x.size()); }
   // The double arrays, always in this order (x .. fyy as declared).
-  std::array<std::vector<double>*, kParticleDoubles> double_arrays();
-  std::array<const std::vector<double>*, kParticleDoubles> double_arrays() const;
+  std::array<StaggeredArray*, kParticleDoubles> double_arrays();
+  std::array<const StaggeredArray*, kParticleDoubles> double_arrays() const;
   // n particles at rest, undeformed (F = I), everything else zero.
   void resize(int n);
   ParticleView view();

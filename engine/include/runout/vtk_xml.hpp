@@ -40,9 +40,9 @@ std::string file_header(const char* type, bool compress);
 
 // Appends one <DataArray> holding values as tuples of `components`; the only
 // path by which any array reaches a file.
-template <class T>
+template <class T, class A>
 void append_array(std::string& xml, const char* indent, const char* name,
-                  int components, const std::vector<T>& values, bool compress) {
+                  int components, const std::vector<T, A>& values, bool compress) {
   xml += indent;
   xml += "<DataArray type=\"";
   xml += VtkType<T>::name;
