@@ -6,8 +6,11 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <vector>
 
 #include "runout/material.hpp"
+#include "runout/particles.hpp"
+#include "runout/stages.hpp"
 
 namespace runout {
 namespace {
@@ -185,6 +188,77 @@ TEST(Tresca, LargeIncrementReturnsToTheEndOfIncrementStrength) {
     EXPECT_NEAR(s.su / su_end, 1.0, 1e-12);
     EXPECT_LT(su_end, 0.5 * su_start);  // the softening within the step matters
   }
+}
+
+}  // namespace
+}  // namespace runout
+
+namespace runout {
+namespace {
+
+// The CPU backend updates four particles at a time (stress_update_x4): the
+// same state as stress_update one at a time, to rounding, for elastic
+// particles and for softening, rate-dependent Tresca ones, some yielding
+// (the plastic correction, one lane at a time) and some not.
+TEST(Tresca, FourAtATimeStressUpdateMatchesOneAtATime) {
+  const MaterialParams mats[] = {elastic_params(600.0, kYoungs, kPoisson),
+                                 tresca(3.0, 0.5, 0.2, StrengthForm::Multiplicative)};
+  const int n = 4 * 200;
+  const double dt = 2e-4;
+  Particles one;
+  one.resize(n);
+  std::vector<double> lxx(n), lxy(n), lyx(n), lyy(n), dx(n), dy(n);
+  ParticleView P = one.view();
+  int yielding = 0;
+  for (int p = 0; p < n; ++p) {
+    const double s = std::sin(1.3 * p + 0.2), t = std::cos(2.9 * p);
+    P.material[p] = (p / 8) % 2;
+    P.mass[p] = 6.0 * (1.0 + 0.1 * s);
+    P.vol0[p] = 0.01;
+    P.vol[p] = 0.01 * (1.0 + 0.02 * t);
+    P.x[p] = 3.0 + s;
+    P.y[p] = 1.0 + t;
+    P.vx[p] = 0.4 * t;
+    P.vy[p] = -0.3 * s;
+    P.sxx[p] = -8000.0 + 2400.0 * s;
+    P.syy[p] = -9000.0 - 2400.0 * t;
+    P.szz[p] = -8500.0;
+    P.sxy[p] = 2000.0 * s * t;
+    P.xi[p] = 0.3 * (1.0 + t);
+    P.su[p] = kSu0;
+    P.fxx[p] = 1.0 + 0.05 * s;
+    P.fxy[p] = 0.2 * t;
+    P.fyx[p] = -0.1 * s;
+    P.fyy[p] = 1.0 - 0.03 * t;
+    lxx[p] = 2.0 * s;
+    lxy[p] = 40.0 * t;
+    lyx[p] = -3.0 * s * t;
+    lyy[p] = -1.5 * t;
+    dx[p] = 1e-4 * s;
+    dy[p] = -1e-4 * t;
+  }
+  Particles four = one;
+  const StepScratch scratch{dx.data(), dy.data()};
+  std::vector<double> speed_one(n), speed_four(n);
+  for (int p = 0; p < n; ++p) {
+    const double xi = P.xi[p];
+    speed_one[p] = stress_update(P, p, {lxx[p], lxy[p], lyx[p], lyy[p]}, mats, dt, scratch);
+    yielding += P.xi[p] > xi;
+  }
+  const ParticleView Q = four.view();
+  for (int p = 0; p < n; p += 4) {
+    const auto at = [p](const std::vector<double>& a) { return load_lanes(a.data() + p); };
+    store_lanes(speed_four.data() + p, stress_update_x4(Q, p, at(lxx), at(lxy), at(lyx), at(lyy),
+                                                        mats[Q.material[p]], dt, scratch));
+  }
+  EXPECT_GT(yielding, n / 8);
+  EXPECT_LT(yielding, n / 2);  // the Tresca half, not all of it
+  const auto a = one.double_arrays(), b = four.double_arrays();
+  for (std::size_t k = 0; k < a.size(); ++k)
+    for (int p = 0; p < n; ++p)
+      EXPECT_NEAR((*b[k])[p], (*a[k])[p], 1e-13 * (1.0 + std::fabs((*a[k])[p])))
+          << "array " << k << ", particle " << p;
+  for (int p = 0; p < n; ++p) EXPECT_NEAR(speed_four[p], speed_one[p], 1e-13 * speed_one[p]);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 //   for_each_particle(stage)           stage(p)
 //   for_each_particle_stencil(g, c, stage)  stage(p, stencil)
 //   max_speed(stage)                   max of stage(p), and how many were < 0
+//                                      (the CPU's four at a time, stage.four)
 //   sum(a, count)                      a sum over nodes
 //   fill(a, count, v)
 //   cell_means(g, value)               per-cell volume-weighted means of value(p)
@@ -158,6 +159,25 @@ struct Stress {
     VelocityGradient l = L.load(p);
     if (rate.mean) set_volumetric_rate(l, rate(p));
     const double speed = stress_update(P, p, l, mats, dt, s);
+    return checked(p, speed);
+  }
+  // Particles p .. p + 3 at once (stress_update_x4) into speeds, where they
+  // share a material; false, and nothing done, where they do not.
+  bool four(int p, double speeds[4]) const {
+    const int m = P.material[p];
+    if (P.material[p + 1] != m || P.material[p + 2] != m || P.material[p + 3] != m) return false;
+    Lanes xx = load_lanes(L.xx + p), yy = load_lanes(L.yy + p);
+    if (rate.mean) {
+      const double trace[4] = {rate(p), rate(p + 1), rate(p + 2), rate(p + 3)};
+      set_volumetric_rate(xx, yy, load_lanes(trace));
+    }
+    store_lanes(speeds, stress_update_x4(P, p, xx, load_lanes(L.xy + p), load_lanes(L.yx + p), yy,
+                                         mats[m], dt, s));
+    for (int k = 0; k < 4; ++k) speeds[k] = checked(p + k, speeds[k]);
+    return true;
+  }
+  // After the update: the move across a periodic seam, and the guards.
+  RUNOUT_HD double checked(int p, double speed) const {
     wrap_periodic(P, p, c);
     return particle_fault(P, p, limits) == Fault::None ? speed : -1.0;
   }

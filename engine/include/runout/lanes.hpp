@@ -109,6 +109,11 @@ inline Lanes sqrt_lanes(const Lanes& a) {
   return {{std::sqrt(lane(a, 0)), std::sqrt(lane(a, 1)), std::sqrt(lane(a, 2)), std::sqrt(lane(a, 3))}};
 #endif
 }
+// One square root, of a double or lane by lane, for the arithmetic written
+// once for both (T double or Lanes).
+RUNOUT_HD inline double square_root(double a) { return std::sqrt(a); }
+inline Lanes square_root(const Lanes& a) { return sqrt_lanes(a); }
+
 inline Lanes floor_lanes(const Lanes& a) {
 #if defined(__AVX__) && !defined(__CUDACC__)
   return {__builtin_ia32_roundpd256(a.v, 0x09)};  // toward -infinity, no inexact exception

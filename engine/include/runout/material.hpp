@@ -51,22 +51,29 @@ struct StrainIncrement {
 // Hypoelastic update: dsigma = lambda tr(de) I + 2 G de with de_zz = 0, so
 // sigma_zz picks up lambda tr(de) (plane strain). The objective (Jaumann)
 // rotation is applied by the caller before this.
+// T: double for one point, Lanes for four (stress_update_x4).
+template <class T>
+RUNOUT_HD inline void elastic_increment(const MaterialParams& m, const T& dexx, const T& deyy,
+                                        const T& dexy, T& sxx, T& syy, T& sxy, T& szz) {
+  const double lambda = m.bulk - 2.0 * m.shear / 3.0;
+  const T tr = dexx + deyy;
+  sxx = sxx + (lambda * tr + 2.0 * m.shear * dexx);
+  syy = syy + (lambda * tr + 2.0 * m.shear * deyy);
+  szz = szz + lambda * tr;
+  sxy = sxy + 2.0 * m.shear * dexy;
+}
+
 RUNOUT_HD inline void elastic_update(const MaterialParams& m, const StrainIncrement& d,
                                      StressPoint& s) {
-  const double lambda = m.bulk - 2.0 * m.shear / 3.0;
-  const double tr = d.dexx + d.deyy;
-  s.sxx += lambda * tr + 2.0 * m.shear * d.dexx;
-  s.syy += lambda * tr + 2.0 * m.shear * d.deyy;
-  s.szz += lambda * tr;
-  s.sxy += 2.0 * m.shear * d.dexy;
+  elastic_increment(m, d.dexx, d.deyy, d.dexy, s.sxx, s.syy, s.sxy, s.szz);
 }
 
 // Undrained Tresca in plane strain with the softening, rate-dependent
-// strength of strength.hpp, by an elastic predictor and a radial return
-// (de Souza Neto, Peric & Owen 2008, "Computational Methods for
-// Plasticity", ch. 7: the return mapping of the von Mises model with
-// nonlinear isotropic hardening, one scalar equation in the plastic
-// multiplier; here the hardening is softening).
+// strength of strength.hpp, by an elastic predictor (elastic_update) and
+// a radial return (tresca_return; de Souza Neto, Peric & Owen 2008,
+// "Computational Methods for Plasticity", ch. 7: the return mapping of the
+// von Mises model with nonlinear isotropic hardening, one scalar equation
+// in the plastic multiplier; here the hardening is softening).
 //
 // The yield function is the radius of the in-plane Mohr circle,
 //   tau = sqrt(((sxx - syy) / 2)^2 + sxy^2),   f = tau - su(xi, gamma_dot).
@@ -88,11 +95,9 @@ RUNOUT_HD inline void elastic_update(const MaterialParams& m, const StrainIncrem
 // strength.hpp); a step that leaves the bracket, or a slope that is not
 // negative (the softening modulus exceeds G: a snap-back), falls back to
 // bisection, so the iteration converges for any softening.
-RUNOUT_HD inline void tresca_update(const MaterialParams& m, const StrainIncrement& d,
-                                    StressPoint& s) {
-  elastic_update(m, d, s);
+RUNOUT_HD inline void tresca_return(const MaterialParams& m, double gamma_dot, StressPoint& s) {
   const StrengthParams& p = m.strength;
-  const RateScaling k = rate_scaling(p, d.gamma_dot);
+  const RateScaling k = rate_scaling(p, gamma_dot);
   const double center = 0.5 * (s.sxx + s.syy);
   const double radius_x = 0.5 * (s.sxx - s.syy);
   const double tau_trial = std::sqrt(radius_x * radius_x + s.sxy * s.sxy);
@@ -134,16 +139,17 @@ RUNOUT_HD inline void tresca_update(const MaterialParams& m, const StrainIncreme
   s.su = su;
 }
 
+// What the model does to an elastic trial s: nothing (elastic), or its
+// yield check and return (Tresca).
+RUNOUT_HD inline void plastic_correction(const MaterialParams& m, double gamma_dot,
+                                         StressPoint& s) {
+  if (m.model == MaterialModel::Tresca) tresca_return(m, gamma_dot, s);
+}
+
 RUNOUT_HD inline void update_stress(const MaterialParams& m, const StrainIncrement& d,
                                     StressPoint& s) {
-  switch (m.model) {
-    case MaterialModel::Elastic:
-      elastic_update(m, d, s);
-      break;
-    case MaterialModel::Tresca:
-      tresca_update(m, d, s);
-      break;
-  }
+  elastic_update(m, d, s);
+  plastic_correction(m, d.gamma_dot, s);
 }
 
 }  // namespace runout

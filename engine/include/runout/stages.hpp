@@ -119,10 +119,17 @@ RUNOUT_HD inline void configure_step(StepConfig& c, double t, double dt) {
 
 // P-wave speed sqrt(M / rho) at the current density plus the particle's
 // speed: the signal speed of the CFL condition dt = C h / max(c + |v|).
+// T: double for one particle, Lanes for four (stress_update_x4).
+template <class T>
+RUNOUT_HD inline T signal_speed(const T& mass, const T& vol, const T& vx, const T& vy,
+                                const MaterialParams& mat) {
+  const T rho = mass / vol;
+  const T speed = square_root(vx * vx + vy * vy);
+  return square_root(p_wave_modulus(mat) / rho) + speed;
+}
+
 RUNOUT_HD inline double cfl_speed(const ParticleView& P, int p, const MaterialParams& mat) {
-  const double rho = P.mass[p] / P.vol[p];
-  const double speed = std::sqrt(P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p]);
-  return std::sqrt(p_wave_modulus(mat) / rho) + speed;
+  return signal_speed(P.mass[p], P.vol[p], P.vx[p], P.vy[p], mat);
 }
 
 // The particle's shape functions for the whole step: every stage evaluates
@@ -803,10 +810,15 @@ RUNOUT_HD inline void displacement(int p, const Stencil2D& st, const GridView& g
 // stress by the cell's mean: one volumetric constraint and one pressure per
 // cell, as in mixed (B-bar, Hughes 1980) elements and their MPM forms (Mast
 // et al. 2012; Coombs et al. 2018). The deviatoric parts are untouched.
+template <class T>
+RUNOUT_HD inline void set_volumetric_rate(T& xx, T& yy, const T& trace) {
+  const T shift = 0.5 * (trace - (xx + yy));
+  xx = xx + shift;
+  yy = yy + shift;
+}
+
 RUNOUT_HD inline void set_volumetric_rate(VelocityGradient& L, double trace) {
-  const double shift = 0.5 * (trace - (L.xx + L.yy));
-  L.xx += shift;
-  L.yy += shift;
+  set_volumetric_rate(L.xx, L.yy, trace);
 }
 
 // Stage 7. Volume by J = det(I + dt L), F by F <- (I + dt L) F (forward
@@ -819,37 +831,100 @@ RUNOUT_HD inline void set_volumetric_rate(VelocityGradient& L, double trace) {
 // sqrt(2 e:e) (e the deviator of D, D_zz = 0) for isochoric flow. Then the
 // particle moves. Returns its P-wave speed plus its speed, for the CFL
 // condition of the next step.
+//
+// StressStep is the part every particle computes alike, up to the elastic
+// trial (the model's plastic correction follows), for one particle (T
+// double) or four (T Lanes, stress_update_x4): in, the state at the start
+// of the step; out, the updated volume and F, the trial stress and gamma_dot.
+template <class T>
+struct StressStep {
+  T vol, fxx, fxy, fyx, fyy;
+  T sxx, syy, sxy, szz;
+  T gamma_dot;
+};
+
+template <class T>
+RUNOUT_HD inline void stress_step(StressStep<T>& u, const T& xx, const T& xy, const T& yx,
+                                  const T& yy, const MaterialParams& mat, double dt) {
+  const T J = (1.0 + dt * xx) * (1.0 + dt * yy) - dt * dt * xy * yx;
+  u.vol = u.vol * J;
+  const T fxx = u.fxx, fxy = u.fxy, fyx = u.fyx, fyy = u.fyy;
+  u.fxx = fxx + dt * (xx * fxx + xy * fyx);
+  u.fxy = fxy + dt * (xx * fxy + xy * fyy);
+  u.fyx = fyx + dt * (yx * fxx + yy * fyx);
+  u.fyy = fyy + dt * (yx * fxy + yy * fyy);
+
+  const T w = 0.5 * (xy - yx);  // spin W_xy
+  const T sxx = u.sxx, syy = u.syy, sxy = u.sxy;
+  u.sxx = sxx + 2.0 * w * sxy * dt;
+  u.syy = syy - 2.0 * w * sxy * dt;
+  u.sxy = sxy + w * (syy - sxx) * dt;
+
+  const T Dxy = 0.5 * (xy + yx);
+  u.gamma_dot = square_root((xx - yy) * (xx - yy) + 4.0 * Dxy * Dxy);
+  elastic_increment(mat, dt * xx, dt * yy, dt * Dxy, u.sxx, u.syy, u.sxy, u.szz);
+}
+
 RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const VelocityGradient& L,
                                       const MaterialParams* materials, double dt,
                                       const StepScratch& s) {
-  const double J = (1.0 + dt * L.xx) * (1.0 + dt * L.yy) - dt * dt * L.xy * L.yx;
-  P.vol[p] *= J;
-  const double fxx = P.fxx[p], fxy = P.fxy[p], fyx = P.fyx[p], fyy = P.fyy[p];
-  P.fxx[p] = fxx + dt * (L.xx * fxx + L.xy * fyx);
-  P.fxy[p] = fxy + dt * (L.xx * fxy + L.xy * fyy);
-  P.fyx[p] = fyx + dt * (L.yx * fxx + L.yy * fyx);
-  P.fyy[p] = fyy + dt * (L.yx * fxy + L.yy * fyy);
-
-  const double w = 0.5 * (L.xy - L.yx);  // spin W_xy
-  const double sxx = P.sxx[p], syy = P.syy[p], sxy = P.sxy[p];
-  StressPoint sp{sxx + 2.0 * w * sxy * dt, syy - 2.0 * w * sxy * dt,
-                 sxy + w * (syy - sxx) * dt, P.szz[p], P.xi[p], P.su[p]};
-
-  const double Dxy = 0.5 * (L.xy + L.yx);
-  const double gamma_dot = std::sqrt((L.xx - L.yy) * (L.xx - L.yy) + 4.0 * Dxy * Dxy);
   const MaterialParams& mat = materials[P.material[p]];
-  update_stress(mat, StrainIncrement{dt * L.xx, dt * L.yy, dt * Dxy, gamma_dot, dt}, sp);
+  StressStep<double> u{P.vol[p], P.fxx[p], P.fxy[p], P.fyx[p], P.fyy[p],
+                       P.sxx[p], P.syy[p], P.sxy[p], P.szz[p], 0.0};
+  stress_step(u, L.xx, L.xy, L.yx, L.yy, mat, dt);
+  StressPoint sp{u.sxx, u.syy, u.sxy, u.szz, P.xi[p], P.su[p]};
+  plastic_correction(mat, u.gamma_dot, sp);
 
+  P.vol[p] = u.vol;
+  P.fxx[p] = u.fxx;
+  P.fxy[p] = u.fxy;
+  P.fyx[p] = u.fyx;
+  P.fyy[p] = u.fyy;
   P.sxx[p] = sp.sxx;
   P.syy[p] = sp.syy;
   P.sxy[p] = sp.sxy;
   P.szz[p] = sp.szz;
   P.xi[p] = sp.xi;
   P.su[p] = sp.su;
-  P.gamma_dot[p] = gamma_dot;
+  P.gamma_dot[p] = u.gamma_dot;
   P.x[p] += s.dx[p];
   P.y[p] += s.dy[p];
   return cfl_speed(P, p, mat);
+}
+
+// stress_update of particles p .. p + 3 of one material, lane k particle
+// p + k's (the CPU backend): the kinematics, the elastic trial and the
+// signal speed four at a time, the plastic correction one particle at a
+// time (a yielding particle iterates on its own). Its two square roots and
+// two divisions a particle were most of the stage's time, each waiting on
+// the one before it.
+inline Lanes stress_update_x4(const ParticleView& P, int p, const Lanes& xx, const Lanes& xy,
+                              const Lanes& yx, const Lanes& yy, const MaterialParams& mat,
+                              double dt, const StepScratch& s) {
+  const auto at = [p](const double* a) { return load_lanes(a + p); };
+  StressStep<Lanes> u{at(P.vol), at(P.fxx), at(P.fxy), at(P.fyx), at(P.fyy),
+                      at(P.sxx), at(P.syy), at(P.sxy), at(P.szz), splat(0.0)};
+  stress_step(u, xx, xy, yx, yy, mat, dt);
+  for (int k = 0; k < 4; ++k) {
+    StressPoint sp{lane(u.sxx, k), lane(u.syy, k), lane(u.sxy, k), lane(u.szz, k),
+                   P.xi[p + k], P.su[p + k]};
+    plastic_correction(mat, lane(u.gamma_dot, k), sp);
+    P.sxx[p + k] = sp.sxx;
+    P.syy[p + k] = sp.syy;
+    P.sxy[p + k] = sp.sxy;
+    P.szz[p + k] = sp.szz;
+    P.xi[p + k] = sp.xi;
+    P.su[p + k] = sp.su;
+  }
+  store_lanes(P.vol + p, u.vol);
+  store_lanes(P.fxx + p, u.fxx);
+  store_lanes(P.fxy + p, u.fxy);
+  store_lanes(P.fyx + p, u.fyx);
+  store_lanes(P.fyy + p, u.fyy);
+  store_lanes(P.gamma_dot + p, u.gamma_dot);
+  store_lanes(P.x + p, at(P.x) + at(s.dx));
+  store_lanes(P.y + p, at(P.y) + at(s.dy));
+  return signal_speed(at(P.mass), u.vol, at(P.vx), at(P.vy), mat);
 }
 
 // Periodic along x, as halo exchange in a domain-decomposed MPM (ExaMPM,
