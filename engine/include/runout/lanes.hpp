@@ -111,8 +111,16 @@ inline Lanes sqrt_lanes(const Lanes& a) {
 }
 // One square root, of a double or lane by lane, for the arithmetic written
 // once for both (T double or Lanes).
+// (host and device alike where Lanes are four plain doubles, as the
+// templates that call it are.)
 RUNOUT_HD inline double square_root(double a) { return std::sqrt(a); }
+#ifdef RUNOUT_LANES_SCALAR
+RUNOUT_HD inline Lanes square_root(const Lanes& a) {
+  return {{std::sqrt(a.v[0]), std::sqrt(a.v[1]), std::sqrt(a.v[2]), std::sqrt(a.v[3])}};
+}
+#else
 inline Lanes square_root(const Lanes& a) { return sqrt_lanes(a); }
+#endif
 
 inline Lanes floor_lanes(const Lanes& a) {
 #if defined(__AVX__) && !defined(__CUDACC__)
