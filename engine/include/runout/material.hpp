@@ -95,16 +95,18 @@ RUNOUT_HD inline void elastic_update(const MaterialParams& m, const StrainIncrem
 // strength.hpp); a step that leaves the bracket, or a slope that is not
 // negative (the softening modulus exceeds G: a snap-back), falls back to
 // bisection, so the iteration converges for any softening.
-RUNOUT_HD inline void tresca_return(const MaterialParams& m, double gamma_dot, StressPoint& s) {
+//
+// k: the rate scaling at the step's gamma_dot; S: the softening at the
+// trial's xi (the iteration starts at dxi = 0 from it, so a yielding
+// particle evaluates no exp more than a particle that does not yield: xi +
+// 0 = xi, and the softening of -0 and +0 is one).
+RUNOUT_HD inline void tresca_return(const MaterialParams& m, const RateScaling& k, double S,
+                                    StressPoint& s) {
   const StrengthParams& p = m.strength;
-  const RateScaling k = rate_scaling(p, gamma_dot);
   const double center = 0.5 * (s.sxx + s.syy);
   const double radius_x = 0.5 * (s.sxx - s.syy);
   const double tau_trial = std::sqrt(radius_x * radius_x + s.sxy * s.sxy);
-  // S: the softening at xi + dxi; the iteration starts at dxi = 0 from the
-  // trial's, one exp fewer a yielding particle (xi + 0 = xi, and the
-  // softening of -0 and +0 is one).
-  double S = softening(p, s.xi);
+  // S: from here the softening at xi + dxi.
   const double su_trial = strength_at(p, k, S);
   if (tau_trial <= su_trial) {
     s.su = su_trial;
@@ -143,7 +145,8 @@ RUNOUT_HD inline void tresca_return(const MaterialParams& m, double gamma_dot, S
 // yield check and return (Tresca).
 RUNOUT_HD inline void plastic_correction(const MaterialParams& m, double gamma_dot,
                                          StressPoint& s) {
-  if (m.model == MaterialModel::Tresca) tresca_return(m, gamma_dot, s);
+  if (m.model == MaterialModel::Tresca)
+    tresca_return(m, rate_scaling(m.strength, gamma_dot), softening(m.strength, s.xi), s);
 }
 
 RUNOUT_HD inline void update_stress(const MaterialParams& m, const StrainIncrement& d,

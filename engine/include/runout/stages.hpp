@@ -893,9 +893,10 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Veloci
 }
 
 // stress_update of particles p .. p + 3 of one material, lane k particle
-// p + k's (the CPU backend): the kinematics, the elastic trial and the
-// signal speed four at a time, the plastic correction one particle at a
-// time (a yielding particle iterates on its own). Its two square roots and
+// p + k's (the CPU backend): the kinematics, the elastic trial, the
+// strength law's exp and pow and the signal speed four at a time, the
+// yield check and return one particle at a time (a yielding particle
+// iterates on its own). Its two square roots and
 // two divisions a particle were most of the stage's time, each waiting on
 // the one before it.
 inline Lanes stress_update_x4(const ParticleView& P, int p, const Lanes& xx, const Lanes& xy,
@@ -905,10 +906,16 @@ inline Lanes stress_update_x4(const ParticleView& P, int p, const Lanes& xx, con
   StressStep<Lanes> u{at(P.vol), at(P.fxx), at(P.fxy), at(P.fyx), at(P.fyy),
                       at(P.sxx), at(P.syy), at(P.sxy), at(P.szz), splat(0.0)};
   stress_step(u, xx, xy, yx, yy, mat, dt);
+  const bool tresca = mat.model == MaterialModel::Tresca;
+  Lanes a = splat(1.0), b = splat(0.0), S = splat(1.0);
+  if (tresca) {
+    rate_scaling_x4(mat.strength, u.gamma_dot, a, b);
+    S = softening_x4(mat.strength, at(P.xi));
+  }
   for (int k = 0; k < 4; ++k) {
     StressPoint sp{lane(u.sxx, k), lane(u.syy, k), lane(u.sxy, k), lane(u.szz, k),
                    P.xi[p + k], P.su[p + k]};
-    plastic_correction(mat, lane(u.gamma_dot, k), sp);
+    if (tresca) tresca_return(mat, RateScaling{lane(a, k), lane(b, k)}, lane(S, k), sp);
     P.sxx[p + k] = sp.sxx;
     P.syy[p + k] = sp.syy;
     P.sxy[p + k] = sp.sxy;

@@ -21,6 +21,7 @@
 
 #include "runout/host_device.hpp"
 #include "runout/kinds.hpp"
+#include "runout/lanes.hpp"
 
 namespace runout {
 
@@ -75,6 +76,28 @@ RUNOUT_HD inline double strength(const StrengthParams& p, const RateScaling& k, 
 
 RUNOUT_HD inline double strength(const StrengthParams& p, double xi, double gamma_dot) {
   return strength(p, rate_scaling(p, gamma_dot), xi);
+}
+
+// softening and rate_scaling of four particles, lane k particle k's (the
+// CPU's stress update, stress_update_x4): the same formulas, with the exp
+// and log of lanes.hpp.
+inline Lanes softening_x4(const StrengthParams& p, const Lanes& xi) {
+  if (p.d_rem == 1.0) return splat(1.0);
+  return p.d_rem + (1.0 - p.d_rem) * exp_lanes(-3.0 * xi / p.xi95);
+}
+
+inline void rate_scaling_x4(const StrengthParams& p, const Lanes& gamma_dot, Lanes& a, Lanes& b) {
+  const Lanes zero = splat(0.0);
+  Lanes R = zero;
+  if (p.eta != 0.0) {
+    // x^n = exp(n ln x): a few ulp from pow for the rates and exponents of
+    // a rate law (n ln x is small); at rest ln 0 = -inf gives 0, and the
+    // select keeps R = 0 there and for a negative rate.
+    const Lanes power = exp_lanes(p.rate_exponent * log_lanes(gamma_dot / p.reference_rate));
+    R = select_less(zero, gamma_dot, p.eta * power, zero);
+  }
+  a = p.form == StrengthForm::Additive ? splat(1.0) : 1.0 + R;
+  b = p.form == StrengthForm::Additive ? R : zero;
 }
 
 }  // namespace runout
