@@ -152,21 +152,31 @@ TEST(ShapeFunctions, FourParticleStencilsMatchOneAtATime) {
   }
   std::vector<Stencil2D> one(n), four(n);
   for (int p = 0; p < n; ++p) make_stencil(g, c, P, p, one[p]);
-  for (int p = 0; p < n; p += 4) make_stencils_x4(g, c, P, p, &four[p]);
+  for (int p = 0; p < n; p += 4)
+    make_stencils_x4(g, c, P, p, [&](int k, const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
+      Stencil2D& s = four[p + k];
+      set_stencil(x, y, lx, ly, s.w, s.d, s.r);
+    });
   const auto expect_close = [](double a, double b, int p) {
     EXPECT_NEAR(a, b, 4e-16 * (1.0 + std::fabs(b))) << "particle " << p;
   };
   for (int p = 0; p < n; ++p) {
-    for (const auto& [a, b] : {std::pair{&four[p].x, &one[p].x}, std::pair{&four[p].y, &one[p].y}}) {
-      EXPECT_EQ(a->cell, b->cell) << "particle " << p;
-      EXPECT_EQ(a->first, b->first) << "particle " << p;
-      expect_close(a->r0, b->r0, p);
-      for (int k = 0; k < kStencilNodes; ++k) {
-        expect_close(a->w[k], b->w[k], p);
-        expect_close(a->dw[k] * h, b->dw[k] * h, p);
-      }
+    const Stencil2D &a = four[p], &b = one[p];
+    EXPECT_EQ(a.r.cell_x, b.r.cell_x) << "particle " << p;
+    EXPECT_EQ(a.r.cell_y, b.r.cell_y) << "particle " << p;
+    EXPECT_EQ(a.w.first_x, b.w.first_x) << "particle " << p;
+    EXPECT_EQ(a.w.first_y, b.w.first_y) << "particle " << p;
+    expect_close(a.r.r0x, b.r.r0x, p);
+    expect_close(a.r.r0y, b.r.r0y, p);
+    for (int k = 0; k < kStencilNodes; ++k) {
+      expect_close(a.w.wx[k], b.w.wx[k], p);
+      expect_close(a.d.dwx[k] * h, b.d.dwx[k] * h, p);
     }
-    expect_close(four[p].lx, one[p].lx, p);
-    expect_close(four[p].ly, one[p].ly, p);
+    for (int k = 0; k < 3; ++k) {
+      expect_close(a.w.wy[k], b.w.wy[k], p);
+      expect_close(a.d.dwy[k] * h, b.d.dwy[k] * h, p);
+    }
+    expect_close(a.r.lx, b.r.lx, p);
+    expect_close(a.r.ly, b.r.ly, p);
   }
 }

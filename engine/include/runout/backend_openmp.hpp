@@ -57,7 +57,9 @@ class OpenMpBackend : public HostBackend {
     const int n = particles_.size();
     particle_block_.assign(n, 0);
     particle_cell_.assign(n, 0);
-    stencils_.resize(n);
+    weights_.resize(n);
+    derivatives_.resize(n);
+    places_.resize(n);
     order_.assign(n, 0);
   }
 
@@ -93,11 +95,10 @@ class OpenMpBackend : public HostBackend {
   [[gnu::flatten]] void scatter(const GridView&, const StepConfig&, Stage stage) {
     const PlainAdd add;
     const auto lower = [](double* a, int n, double v) { a[n] = std::min(a[n], v); };
-    const Stencil2D* st = stencils_.data();
     for (int colour = 0; colour < 2; ++colour) {
 #pragma omp parallel for schedule(dynamic, 1) firstprivate(stage) if (order_.size() > kParallelMin)
       for (int strip = colour; strip < strips_; strip += 2)
-        for_each_in_strip(strip, [&](int p) { stage(p, st[p], add, lower); });
+        for_each_in_strip(strip, [&](int p) { stage(p, stencil(p), add, lower); });
     }
   }
 
@@ -112,10 +113,9 @@ class OpenMpBackend : public HostBackend {
   }
   template <class Stage>
   [[gnu::flatten]] void for_each_particle_stencil(const GridView&, const StepConfig&, Stage stage) {
-    const Stencil2D* st = stencils_.data();
     const int n = particles_.size();
 #pragma omp parallel for schedule(dynamic, kChunk) firstprivate(stage) if (n > kParallelMin)
-    for (int p = 0; p < n; ++p) stage(p, st[p]);
+    for (int p = 0; p < n; ++p) stage(p, stencil(p));
   }
 
   // Four particles at a time where they share a material (stage.four), in
@@ -163,6 +163,8 @@ class OpenMpBackend : public HostBackend {
   }
 
  private:
+  StencilRefs stencil(int p) const { return {weights_[p], derivatives_[p], places_[p]}; }
+
   // The particles of a strip, block row by block row, each block's in
   // index order.
   template <class F>
@@ -183,26 +185,29 @@ class OpenMpBackend : public HostBackend {
     blocks_y_ = (cells_y + kBlock - 1) / kBlock;
     strips_ = (blocks_x_ + kStrip - 1) / kStrip;
     const int blocks = blocks_x_ * blocks_y_;
-    Stencil2D* const st = stencils_.data();
+    StencilWeights* const w = weights_.data();
+    StencilDerivatives* const d = derivatives_.data();
+    StencilPlace* const r = places_.data();
     int *const block = particle_block_.data(), *const cell = particle_cell_.data();
-    const auto place = [&](int p) {
-      const int ci = st[p].x.cell, cj = st[p].y.cell;
-      block[p] = (cj / kBlock) * bx + ci / kBlock;
-      cell[p] = cj * cells_x + ci;
+    const auto place = [&](int p, const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
+      set_stencil(x, y, lx, ly, w[p], d[p], r[p]);
+      block[p] = (y.cell / kBlock) * bx + x.cell / kBlock;
+      cell[p] = y.cell * cells_x + x.cell;
     };
     // Four particles at a time (make_stencils_x4): in groups fixed by the
     // index, so the same whatever the number of threads.
     const int groups = P.n / 4;
 #pragma omp parallel for schedule(dynamic, kChunk / 4) firstprivate(P, g, c) \
     if (P.n > kParallelMin)
-    for (int q = 0; q < groups; ++q) {
-      make_stencils_x4(g, c, P, 4 * q, st + 4 * q);
-      for (int p = 4 * q; p < 4 * q + 4; ++p) place(p);
-    }
-    for (int p = 4 * groups; p < P.n; ++p) {
-      make_stencil(g, c, P, p, st[p]);
-      place(p);
-    }
+    for (int q = 0; q < groups; ++q)
+      make_stencils_x4(g, c, P, 4 * q,
+                       [&](int k, const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
+                         place(4 * q + k, x, y, lx, ly);
+                       });
+    for (int p = 4 * groups; p < P.n; ++p)
+      make_stencil(g, c, P, p, [&](const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
+        place(p, x, y, lx, ly);
+      });
     // Stable counting sort: within a block particles keep their index order,
     // which fixes the order of the sums at every node.
     block_start_.assign(blocks + 1, 0);
@@ -212,7 +217,10 @@ class OpenMpBackend : public HostBackend {
     for (int p = 0; p < P.n; ++p) order_[next_[particle_block_[p]]++] = p;
   }
 
-  std::vector<Stencil2D> stencils_;
+  // The particles' stencils, a part an array (stages.hpp, Stencil2D).
+  std::vector<StencilWeights> weights_;
+  std::vector<StencilDerivatives> derivatives_;
+  std::vector<StencilPlace> places_;
   // Particles grouped by block of kBlock x kBlock cells (counting sort).
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, next_;
   int blocks_x_ = 0, blocks_y_ = 0, strips_ = 0;

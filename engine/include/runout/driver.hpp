@@ -76,8 +76,8 @@ struct P2g {
   ParticleView P;
   GridView g;
   StepConfig c;
-  template <class Add, class Lower>
-  RUNOUT_HD void operator()(int p, const Stencil2D& st, Add add, Lower lower) const {
+  template <class St, class Add, class Lower>
+  RUNOUT_HD void operator()(int p, const St& st, Add add, Lower lower) const {
     p2g(P, p, st, g, c, add, lower);
   }
 };
@@ -100,8 +100,8 @@ struct XpicStart {
 struct P2gSmoothed {
   ParticleView P;
   GridView g;
-  template <class Add, class Lower>
-  RUNOUT_HD void operator()(int p, const Stencil2D& st, Add add, Lower) const {
+  template <class St, class Add, class Lower>
+  RUNOUT_HD void operator()(int p, const St& st, Add add, Lower) const {
     p2g_smoothed(P, p, st, g, add);
   }
 };
@@ -117,8 +117,8 @@ struct G2pMomentum {
   ParticleView P;
   GridView g;
   StepConfig c;
-  template <class Add, class Lower>
-  RUNOUT_HD void operator()(int p, const Stencil2D& st, Add add, Lower) const {
+  template <class St, class Add, class Lower>
+  RUNOUT_HD void operator()(int p, const St& st, Add add, Lower) const {
     g2p(P, p, st, g, c);
     p2g_momentum(P, p, st, g, c, add);
   }
@@ -134,7 +134,8 @@ struct Gradient {
   double dt;
   StepScratch s;
   GradientView L;
-  RUNOUT_HD void operator()(int p, const Stencil2D& st) const {
+  template <class St>
+  RUNOUT_HD void operator()(int p, const St& st) const {
     L.store(p, velocity_gradient(st, g));
     displacement(p, st, g, dt, s);
   }

@@ -133,12 +133,55 @@ RUNOUT_HD inline double cfl_speed(const ParticleView& P, int p, const MaterialPa
 }
 
 // The particle's shape functions for the whole step: every stage evaluates
-// them at the start-of-step position, so they are computed once. lx, ly:
-// the half-widths of the particle's domain (domain_half_widths).
-struct Stencil2D {
-  Stencil1D x, y;
-  double lx, ly;
+// them at the start-of-step position, so they are computed once. In three
+// parts, by the stages that read them: the CPU backend keeps each part in
+// an array of its own (backend_openmp.hpp), so that g2p and the momentum
+// remap, which read only the weights, stream 64 bytes a particle where the
+// whole stencil was 176 (its samples fell by a quarter, 1e5 particles, one
+// thread). The stages take any St with members w, d and r of these types:
+// Stencil2D, which holds them (the CUDA and serial backends compute one in
+// each pass), or StencilRefs, which refers to them.
+struct StencilWeights {       // every stage
+  int first_x, first_y;       // grid indices of the rows' first node and of the first row
+  double wx[kStencilNodes];   // weights along x of nodes first_x .. first_x + 3 (one zero)
+  double wy[3];               // weights along y of rows first_y .. first_y + 2
 };
+struct StencilDerivatives {   // p2g, the gradient, APIC's g2p
+  double dwx[kStencilNodes];  // d/dx of wx
+  double dwy[3];              // d/dy of wy
+};
+struct StencilPlace {         // p2g's gap to the base, APIC's offsets, the binning
+  double lx, ly;              // the half-widths of the particle's domain (domain_half_widths)
+  double r0x, r0y;            // the first node's offset from the particle, x_first - x_p
+  int cell_x, cell_y;         // the cell the particle is in
+};
+struct Stencil2D {
+  StencilWeights w;
+  StencilDerivatives d;
+  StencilPlace r;
+};
+struct StencilRefs {
+  const StencilWeights& w;
+  const StencilDerivatives& d;
+  const StencilPlace& r;
+};
+
+// The parts from the two directions' Stencil1D (the y stencil's fourth
+// node has zero weight) and the domain's half-widths.
+RUNOUT_HD inline void set_stencil(const Stencil1D& x, const Stencil1D& y, double lx, double ly,
+                                  StencilWeights& w, StencilDerivatives& d, StencilPlace& r) {
+  w.first_x = x.first;
+  w.first_y = y.first;
+  for (int a = 0; a < kStencilNodes; ++a) {
+    w.wx[a] = x.w[a];
+    d.dwx[a] = x.dw[a];
+  }
+  for (int b = 0; b < 3; ++b) {
+    w.wy[b] = y.w[b];
+    d.dwy[b] = y.dw[b];
+  }
+  r = StencilPlace{lx, ly, x.r0, y.r0, x.cell, y.cell};
+}
 
 // The half-widths of a particle's GIMP domain. Fixed: the initial square of
 // half-width lp (uGIMP). Deforming: the particles started on a square
@@ -213,11 +256,24 @@ RUNOUT_HD inline void domain_half_widths(const ParticleView& P, int p, const Ste
   ly = std::min(cap, std::max(floor, t * wy));
 }
 
+// set(x, y, lx, ly) with the particle's Stencil1D along x and y and its
+// domain's half-widths.
+template <class Set>
+RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
+                                   int p, Set&& set) {
+  double lx, ly;
+  domain_half_widths(P, p, c, g.h, lx, ly);
+  Stencil1D x, y;
+  stencil_1d(c.shape, P.x[p], g.ox, g.h, lx, x, StencilStart::CellLeft);
+  stencil_1d(c.shape, P.y[p], g.oy, g.h, ly, y, StencilStart::Nearest);
+  set(x, y, lx, ly);
+}
+
 RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
                                    int p, Stencil2D& s) {
-  domain_half_widths(P, p, c, g.h, s.lx, s.ly);
-  stencil_1d(c.shape, P.x[p], g.ox, g.h, s.lx, s.x, StencilStart::CellLeft);
-  stencil_1d(c.shape, P.y[p], g.oy, g.h, s.ly, s.y, StencilStart::Nearest);
+  make_stencil(g, c, P, p, [&](const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
+    set_stencil(x, y, lx, ly, s.w, s.d, s.r);
+  });
 }
 
 // domain_half_widths of particles p .. p + 3, lane k particle p + k's, for
@@ -261,36 +317,38 @@ inline bool domain_half_widths_x4(const ParticleView& P, int p, const StepConfig
   return true;
 }
 
-// make_stencil of particles p .. p + 3 into s[0 .. 3] (GIMP; with linear
-// shape functions one at a time).
+// make_stencil of particles p .. p + 3: set(k, x, y, lx, ly) for particle
+// p + k (GIMP; with linear shape functions one at a time).
+template <class Set>
 inline void make_stencils_x4(const GridView& g, const StepConfig& c, const ParticleView& P, int p,
-                             Stencil2D* s) {
+                             Set&& set) {
   Lanes lx, ly;
   if (c.shape != ShapeKind::Gimp || !domain_half_widths_x4(P, p, c, g.h, lx, ly)) {
-    for (int k = 0; k < 4; ++k) make_stencil(g, c, P, p + k, s[k]);
+    for (int k = 0; k < 4; ++k)
+      make_stencil(g, c, P, p + k, [&](const Stencil1D& x, const Stencil1D& y, double wx, double wy) {
+        set(k, x, y, wx, wy);
+      });
     return;
   }
-  Stencil1D* const x[4] = {&s[0].x, &s[1].x, &s[2].x, &s[3].x};
-  Stencil1D* const y[4] = {&s[0].y, &s[1].y, &s[2].y, &s[3].y};
-  stencil_1d_x4(load_lanes(P.x + p), g.ox, g.h, lx, StencilStart::CellLeft, x);
-  stencil_1d_x4(load_lanes(P.y + p), g.oy, g.h, ly, StencilStart::Nearest, y);
-  for (int k = 0; k < 4; ++k) {
-    s[k].lx = lane(lx, k);
-    s[k].ly = lane(ly, k);
-  }
+  Stencil1D x[4], y[4];
+  Stencil1D* const xs[4] = {&x[0], &x[1], &x[2], &x[3]};
+  Stencil1D* const ys[4] = {&y[0], &y[1], &y[2], &y[3]};
+  stencil_1d_x4(load_lanes(P.x + p), g.ox, g.h, lx, StencilStart::CellLeft, xs);
+  stencil_1d_x4(load_lanes(P.y + p), g.oy, g.h, ly, StencilStart::Nearest, ys);
+  for (int k = 0; k < 4; ++k) set(k, x[k], y[k], lane(lx, k), lane(ly, k));
 }
 
 // Visits the 4 x 3 nodes of a stencil (one of each row's four has zero
 // weight): f(node, N, dN/dx, dN/dy, rx, ry), with (rx, ry) = x_i - x_p the
 // node's offset from the particle.
-template <class F>
-RUNOUT_HD inline void for_each_node(const GridView& g, const Stencil2D& s, F&& f) {
+template <class St, class F>
+RUNOUT_HD inline void for_each_node(const GridView& g, const St& s, F&& f) {
   for (int b = 0; b < 3; ++b) {
-    const double ry = s.y.r0 + b * g.h;
+    const double ry = s.r.r0y + b * g.h;
     for (int a = 0; a < kStencilNodes; ++a) {
-      const int node = g.index(s.x.first + a, s.y.first + b);
-      f(node, s.x.w[a] * s.y.w[b], s.x.dw[a] * s.y.w[b], s.x.w[a] * s.y.dw[b], s.x.r0 + a * g.h,
-        ry);
+      const int node = g.index(s.w.first_x + a, s.w.first_y + b);
+      f(node, s.w.wx[a] * s.w.wy[b], s.d.dwx[a] * s.w.wy[b], s.w.wx[a] * s.d.dwy[b],
+        s.r.r0x + a * g.h, ry);
     }
   }
 }
@@ -300,16 +358,18 @@ RUNOUT_HD inline void for_each_node(const GridView& g, const Stencil2D& s, F&& f
 // side by side in every nodal array, with weights wx wy and gradients
 // (dwx wy, wx dwy), wx and dwx the stencil's x lanes (Lanes, lanes.hpp).
 // The scatter functor adds a row at once (add(a, n0, lanes)).
-template <class F>
-RUNOUT_HD inline void for_each_row(const GridView& g, const Stencil2D& s, F&& f) {
+// (Stages that do not use dwy or ry do not read them: the calls inline.)
+template <class St, class F>
+RUNOUT_HD inline void for_each_row(const GridView& g, const St& s, F&& f) {
   for (int b = 0; b < 3; ++b)
-    f(g.index(s.x.first, s.y.first + b), s.y.w[b], s.y.dw[b], s.y.r0 + b * g.h);
+    f(g.index(s.w.first_x, s.w.first_y + b), s.w.wy[b], s.d.dwy[b], s.r.r0y + b * g.h);
 }
 
 // Two nodal fields interpolated at the particle: sum N a and sum N b.
-RUNOUT_HD inline void interpolate(const GridView& g, const Stencil2D& st, const double* a,
+template <class St>
+RUNOUT_HD inline void interpolate(const GridView& g, const St& st, const double* a,
                                   const double* b, double& at_a, double& at_b) {
-  const Lanes wx = load_lanes(st.x.w);
+  const Lanes wx = load_lanes(st.w.wx);
   Lanes sa = splat(0.0), sb = sa;
   for_each_row(g, st, [&](int n0, double wy, double, double) {
     const Lanes N = wx * wy;
@@ -346,8 +406,9 @@ RUNOUT_HD inline AffineVelocity particle_velocity(const ParticleView& P, int p, 
 // along the normal, lx |n_x| + ly |n_y|. Zero for a particle resting on the
 // base, negative for one pressed into it. lp = h / (2 ppc) is half the
 // particle spacing, so a linear-shape point stands for the same square.
-RUNOUT_HD inline double particle_gap(const Stencil2D& st, const BasePoint& b) {
-  return b.d - (st.lx * std::fabs(b.nx) + st.ly * std::fabs(b.ny));
+template <class St>
+RUNOUT_HD inline double particle_gap(const St& st, const BasePoint& b) {
+  return b.d - (st.r.lx * std::fabs(b.nx) + st.r.ly * std::fabs(b.ny));
 }
 
 // Stage 1. add(array, node, value) does array[node] += value and
@@ -355,8 +416,8 @@ RUNOUT_HD inline double particle_gap(const Stencil2D& st, const BasePoint& b) {
 // operations under the CPU's colouring, atomics on a GPU. The nodal gap is
 // the smallest gap of the particles a node sees, so it is zero where any of
 // them rests on the base: the material there touches it.
-template <class Add, class Lower>
-RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
+template <class St, class Add, class Lower>
+RUNOUT_HD inline void p2g(const ParticleView& P, int p, const St& st, const GridView& g,
                           const StepConfig& c, Add&& add, Lower&& lower) {
   const double m = P.mass[p], V = P.vol[p];
   const bool affine = c.transfer == TransferKind::Apic;
@@ -373,11 +434,11 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const Stencil2D& st, con
   double gap = 0.0;
   if (c.base.kind != BaseKind::None) {
     const BasePoint b = locate_on_base(c.base, P.x[p], P.y[p]);
-    near_base = b.d < std::sqrt(2.0) * (g.h + std::max(st.lx, st.ly));
+    near_base = b.d < std::sqrt(2.0) * (g.h + std::max(st.r.lx, st.r.ly));
     gap = particle_gap(st, b);
   }
-  const Lanes wx = load_lanes(st.x.w), dwx = load_lanes(st.x.dw);
-  const Lanes rx = lane_offsets(st.x.r0, g.h);
+  const Lanes wx = load_lanes(st.w.wx), dwx = load_lanes(st.d.dwx);
+  const Lanes rx = lane_offsets(st.r.r0x, g.h);
   for_each_row(g, st, [&](int n0, double wy, double dwy, double ry) {
     // (no zero-weight test: adding an exact zero changes no sum)
     const Lanes Nm = wx * wy * m, dNx = dwx * wy, dNy = wx * dwy;
@@ -590,7 +651,8 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
 // PIC/FLIP: FLIP carries the particle's own velocity plus the grid's change
 // (little dissipation), PIC takes the grid velocity; a per-step blend damps
 // at a rate (1 - flip) / dt, which grows as the step shrinks.
-RUNOUT_HD inline void g2p_apic(const ParticleView& P, int p, const Stencil2D& st,
+template <class St>
+RUNOUT_HD inline void g2p_apic(const ParticleView& P, int p, const St& st,
                                const GridView& g) {
   double vx = 0, vy = 0, bxx = 0, bxy = 0, byx = 0, byy = 0, dxx = 0, dyy = 0;
   double gxx = 0, gxy = 0, gyx = 0, gyy = 0;
@@ -619,13 +681,14 @@ RUNOUT_HD inline void g2p_apic(const ParticleView& P, int p, const Stencil2D& st
   P.cyy[p] = use_y ? byy / dyy : gyy;
 }
 
-RUNOUT_HD inline void g2p(const ParticleView& P, int p, const Stencil2D& st, const GridView& g,
+template <class St>
+RUNOUT_HD inline void g2p(const ParticleView& P, int p, const St& st, const GridView& g,
                           const StepConfig& c) {
   if (c.transfer == TransferKind::Apic) {
     g2p_apic(P, p, st, g);
     return;
   }
-  const Lanes wx = load_lanes(st.x.w);
+  const Lanes wx = load_lanes(st.w.wx);
   if (c.xpic_now) {
     Lanes ux = splat(0.0), uy = ux;
     for_each_row(g, st, [&](int n0, double wy, double, double) {
@@ -684,13 +747,13 @@ RUNOUT_HD inline void xpic_start(const GridView& g, int n, const StepConfig& c) 
 }
 
 // S of the current term at the particle, scattered as momentum into px, py.
-template <class Add>
-RUNOUT_HD inline void p2g_smoothed(const ParticleView& P, int p, const Stencil2D& st,
+template <class St, class Add>
+RUNOUT_HD inline void p2g_smoothed(const ParticleView& P, int p, const St& st,
                                    const GridView& g, Add&& add) {
   double ux, uy;
   interpolate(g, st, g.qx, g.qy, ux, uy);
   const double m = P.mass[p];
-  const Lanes wx = load_lanes(st.x.w);
+  const Lanes wx = load_lanes(st.w.wx);
   for_each_row(g, st, [&](int n0, double wy, double, double) {
     const Lanes Nm = wx * wy * m;
     add(g.px, n0, Nm * ux);
@@ -713,13 +776,13 @@ RUNOUT_HD inline void xpic_term(const GridView& g, int n, const StepConfig& c, i
 }
 
 // Stage 4: the MUSL remap of the updated particle momentum.
-template <class Add>
-RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const Stencil2D& st,
+template <class St, class Add>
+RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const St& st,
                                    const GridView& g, const StepConfig& c, Add&& add) {
   const double m = P.mass[p];
   const bool affine = c.transfer == TransferKind::Apic;
   const AffineVelocity v = particle_velocity(P, p, affine);
-  const Lanes wx = load_lanes(st.x.w), rx = lane_offsets(st.x.r0, g.h);
+  const Lanes wx = load_lanes(st.w.wx), rx = lane_offsets(st.r.r0x, g.h);
   for_each_row(g, st, [&](int n0, double wy, double, double ry) {
     // (no zero-weight test, as in p2g: whether a weight is zero depends on
     // where the particle sits in its cell, so the branch was unpredictable)
@@ -776,8 +839,9 @@ struct VelocityGradient {
 };
 
 // Stage 6a: L from the remapped velocity.
-RUNOUT_HD inline VelocityGradient velocity_gradient(const Stencil2D& st, const GridView& g) {
-  const Lanes wx = load_lanes(st.x.w), dwx = load_lanes(st.x.dw);
+template <class St>
+RUNOUT_HD inline VelocityGradient velocity_gradient(const St& st, const GridView& g) {
+  const Lanes wx = load_lanes(st.w.wx), dwx = load_lanes(st.d.dwx);
   Lanes xx = splat(0.0), xy = xx, yx = xx, yy = xx;
   for_each_row(g, st, [&](int n0, double wy, double dwy, double) {
     const Lanes dNx = dwx * wy, dNy = wx * dwy;
@@ -792,7 +856,8 @@ RUNOUT_HD inline VelocityGradient velocity_gradient(const Stencil2D& st, const G
 }
 
 // Stage 6b: the step displacement, applied in stress_update.
-RUNOUT_HD inline void displacement(int p, const Stencil2D& st, const GridView& g, double dt,
+template <class St>
+RUNOUT_HD inline void displacement(int p, const St& st, const GridView& g, double dt,
                                    const StepScratch& s) {
   double mid_x, mid_y;
   interpolate(g, st, g.vmx, g.vmy, mid_x, mid_y);
