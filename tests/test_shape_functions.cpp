@@ -152,11 +152,11 @@ TEST(ShapeFunctions, FourParticleStencilsMatchOneAtATime) {
   }
   std::vector<Stencil2D> one(n), four(n);
   for (int p = 0; p < n; ++p) make_stencil(g, c, P, p, one[p]);
-  for (int p = 0; p < n; p += 4)
-    make_stencils_x4(g, c, P, p, [&](int k, const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
-      Stencil2D& s = four[p + k];
-      set_stencil(x, y, lx, ly, s.w, s.d, s.r);
-    });
+  std::vector<StencilWeights> w(n);
+  std::vector<StencilDerivatives> d(n);
+  std::vector<StencilPlace> r(n);
+  for (int p = 0; p < n; p += 4) make_stencils_x4(g, c, P, p, &w[p], &d[p], &r[p]);
+  for (int p = 0; p < n; ++p) four[p] = Stencil2D{w[p], d[p], r[p]};
   const auto expect_close = [](double a, double b, int p) {
     EXPECT_NEAR(a, b, 4e-16 * (1.0 + std::fabs(b))) << "particle " << p;
   };

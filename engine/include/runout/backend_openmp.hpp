@@ -189,25 +189,26 @@ class OpenMpBackend : public HostBackend {
     StencilDerivatives* const d = derivatives_.data();
     StencilPlace* const r = places_.data();
     int *const block = particle_block_.data(), *const cell = particle_cell_.data();
-    const auto place = [&](int p, const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
-      set_stencil(x, y, lx, ly, w[p], d[p], r[p]);
-      block[p] = (y.cell / kBlock) * bx + x.cell / kBlock;
-      cell[p] = y.cell * cells_x + x.cell;
+    const auto place = [&](int p) {
+      const int ci = r[p].cell_x, cj = r[p].cell_y;
+      block[p] = (cj / kBlock) * bx + ci / kBlock;
+      cell[p] = cj * cells_x + ci;
     };
     // Four particles at a time (make_stencils_x4): in groups fixed by the
     // index, so the same whatever the number of threads.
     const int groups = P.n / 4;
 #pragma omp parallel for schedule(dynamic, kChunk / 4) firstprivate(P, g, c) \
     if (P.n > kParallelMin)
-    for (int q = 0; q < groups; ++q)
-      make_stencils_x4(g, c, P, 4 * q,
-                       [&](int k, const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
-                         place(4 * q + k, x, y, lx, ly);
-                       });
-    for (int p = 4 * groups; p < P.n; ++p)
+    for (int q = 0; q < groups; ++q) {
+      make_stencils_x4(g, c, P, 4 * q, w + 4 * q, d + 4 * q, r + 4 * q);
+      for (int p = 4 * q; p < 4 * q + 4; ++p) place(p);
+    }
+    for (int p = 4 * groups; p < P.n; ++p) {
       make_stencil(g, c, P, p, [&](const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
-        place(p, x, y, lx, ly);
+        set_stencil(x, y, lx, ly, w[p], d[p], r[p]);
       });
+      place(p);
+    }
     // Stable counting sort: within a block particles keep their index order,
     // which fixes the order of the sums at every node.
     block_start_.assign(blocks + 1, 0);

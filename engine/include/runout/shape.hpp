@@ -131,13 +131,15 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
 }
 
 // stencil_1d (GIMP) of four particles at once: lane k of xp and lp is
-// particle k's, whose stencil goes to out[k]. The same operations, so
+// particle k's, whose stencil goes to out(k, cell, first, r0, w, dw) (w and
+// dw that particle's four nodes, as Lanes). The same operations, so
 // the same weights to rounding (the compiler may fuse other pairs of
 // them into multiply-adds); a third of the arithmetic, as each gimp_lanes
 // evaluates one node of four particles, not the four of one, whose last
 // is always zero.
+template <class Out>
 inline void stencil_1d_x4(const Lanes& xp, double origin, double h, const Lanes& lp,
-                          StencilStart start, Stencil1D* const out[4]) {
+                          StencilStart start, Out&& out) {
   const Lanes u = (xp - origin) / h;
   const Lanes cell = floor_lanes(u);
   const Lanes first = start == StencilStart::CellLeft
@@ -152,14 +154,9 @@ inline void stencil_1d_x4(const Lanes& xp, double origin, double h, const Lanes&
   if (nodes == 3) w[3] = dw[3] = splat(0.0);
   transpose_lanes(w);
   transpose_lanes(dw);
-  for (int q = 0; q < 4; ++q) {
-    Stencil1D& s = *out[q];
-    s.cell = static_cast<int>(lane(cell, q));
-    s.first = static_cast<int>(lane(first, q));
-    s.r0 = lane(r0, q);
-    store_lanes(s.w, w[q]);
-    store_lanes(s.dw, dw[q]);
-  }
+  for (int q = 0; q < 4; ++q)
+    out(q, static_cast<int>(lane(cell, q)), static_cast<int>(lane(first, q)), lane(r0, q), w[q],
+        dw[q]);
 }
 
 }  // namespace runout

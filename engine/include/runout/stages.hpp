@@ -317,25 +317,39 @@ inline bool domain_half_widths_x4(const ParticleView& P, int p, const StepConfig
   return true;
 }
 
-// make_stencil of particles p .. p + 3: set(k, x, y, lx, ly) for particle
-// p + k (GIMP; with linear shape functions one at a time).
-template <class Set>
+// make_stencil of particles p .. p + 3 into the parts w[0 .. 3], d[0 .. 3]
+// and r[0 .. 3] (GIMP; with linear shape functions one at a time), written
+// in place: through a Stencil1D and set_stencil the binning took 14 % longer.
 inline void make_stencils_x4(const GridView& g, const StepConfig& c, const ParticleView& P, int p,
-                             Set&& set) {
+                             StencilWeights* w, StencilDerivatives* d, StencilPlace* r) {
   Lanes lx, ly;
   if (c.shape != ShapeKind::Gimp || !domain_half_widths_x4(P, p, c, g.h, lx, ly)) {
     for (int k = 0; k < 4; ++k)
       make_stencil(g, c, P, p + k, [&](const Stencil1D& x, const Stencil1D& y, double wx, double wy) {
-        set(k, x, y, wx, wy);
+        set_stencil(x, y, wx, wy, w[k], d[k], r[k]);
       });
     return;
   }
-  Stencil1D x[4], y[4];
-  Stencil1D* const xs[4] = {&x[0], &x[1], &x[2], &x[3]};
-  Stencil1D* const ys[4] = {&y[0], &y[1], &y[2], &y[3]};
-  stencil_1d_x4(load_lanes(P.x + p), g.ox, g.h, lx, StencilStart::CellLeft, xs);
-  stencil_1d_x4(load_lanes(P.y + p), g.oy, g.h, ly, StencilStart::Nearest, ys);
-  for (int k = 0; k < 4; ++k) set(k, x[k], y[k], lane(lx, k), lane(ly, k));
+  stencil_1d_x4(load_lanes(P.x + p), g.ox, g.h, lx, StencilStart::CellLeft,
+                [&](int k, int cell, int first, double r0, const Lanes& wl, const Lanes& dwl) {
+                  w[k].first_x = first;
+                  store_lanes(w[k].wx, wl);
+                  store_lanes(d[k].dwx, dwl);
+                  r[k].cell_x = cell;
+                  r[k].r0x = r0;
+                  r[k].lx = lane(lx, k);
+                });
+  stencil_1d_x4(load_lanes(P.y + p), g.oy, g.h, ly, StencilStart::Nearest,
+                [&](int k, int cell, int first, double r0, const Lanes& wl, const Lanes& dwl) {
+                  w[k].first_y = first;
+                  for (int b = 0; b < 3; ++b) {
+                    w[k].wy[b] = lane(wl, b);
+                    d[k].dwy[b] = lane(dwl, b);
+                  }
+                  r[k].cell_y = cell;
+                  r[k].r0y = r0;
+                  r[k].ly = lane(ly, k);
+                });
 }
 
 // Visits the 4 x 3 nodes of a stencil (one of each row's four has zero
