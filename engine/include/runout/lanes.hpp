@@ -18,7 +18,7 @@
 
 #if defined(RUNOUT_LIBMVEC) && defined(__AVX2__) && !defined(RUNOUT_LANES_SCALAR)
 // glibc's libmvec, four doubles in an AVX register (the x86_64 vector ABI's
-// names for exp and pow).
+// names for exp and log).
 typedef double RunoutVector4d __attribute__((vector_size(4 * sizeof(double))));
 extern "C" RunoutVector4d _ZGVdN4v_exp(RunoutVector4d);
 extern "C" RunoutVector4d _ZGVdN4v_log(RunoutVector4d);
@@ -108,26 +108,21 @@ RUNOUT_HD inline Lanes operator-(const Lanes& a, double x) { return a + -x; }
 RUNOUT_HD inline Lanes operator/(const Lanes& a, double x) { return a / splat(x); }
 RUNOUT_HD inline Lanes operator/(double x, const Lanes& a) { return splat(x) / a; }
 
-// Lane by lane, with the scalar function's result in each lane (both are
-// exact or correctly rounded): one instruction each with AVX.
-inline Lanes sqrt_lanes(const Lanes& a) {
-#if defined(__AVX__) && !defined(__CUDACC__)
-  return {__builtin_ia32_sqrtpd256(a.v)};
-#else
-  return {{std::sqrt(lane(a, 0)), std::sqrt(lane(a, 1)), std::sqrt(lane(a, 2)), std::sqrt(lane(a, 3))}};
-#endif
-}
-// One square root, of a double or lane by lane, for the arithmetic written
-// once for both (T double or Lanes).
-// (host and device alike where Lanes are four plain doubles, as the
-// templates that call it are.)
+// The square root of a double, or lane by lane (correctly rounded either
+// way, so each lane is the scalar result; one instruction with AVX), for
+// the arithmetic written once for both. Host and device alike where Lanes
+// are four plain doubles, as the templates that call it are.
 RUNOUT_HD inline double square_root(double a) { return std::sqrt(a); }
 #ifdef RUNOUT_LANES_SCALAR
 RUNOUT_HD inline Lanes square_root(const Lanes& a) {
   return {{std::sqrt(a.v[0]), std::sqrt(a.v[1]), std::sqrt(a.v[2]), std::sqrt(a.v[3])}};
 }
+#elif defined(__AVX__)
+inline Lanes square_root(const Lanes& a) { return {__builtin_ia32_sqrtpd256(a.v)}; }
 #else
-inline Lanes square_root(const Lanes& a) { return sqrt_lanes(a); }
+inline Lanes square_root(const Lanes& a) {
+  return {{std::sqrt(lane(a, 0)), std::sqrt(lane(a, 1)), std::sqrt(lane(a, 2)), std::sqrt(lane(a, 3))}};
+}
 #endif
 
 // exp and log lane by lane: glibc's vector forms (libmvec) in builds for
