@@ -198,6 +198,11 @@ class CudaBackend {
     RUNOUT_CUDA_LAUNCHED("max_speed");
     return reduce_speed();
   }
+  // One group: every cell.
+  template <class F>
+  SpeedMax for_cell_groups(const GridView&, const StepConfig&, F&& f) {
+    return f(*this);
+  }
   template <class Value>
   CellMeanView cell_means(const GridView&, Value value) {
     clear_cells();

@@ -12,6 +12,10 @@
 #include <utility>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "runout/backend_host.hpp"
 
 namespace runout {
@@ -111,87 +115,147 @@ class OpenMpBackend : public HostBackend {
   void for_each_particle(Stage stage) {
     for_each(particles_.size(), stage);
   }
-  template <class Stage>
-  [[gnu::flatten]] void for_each_particle_stencil(const GridView&, const StepConfig&, Stage stage) {
-    const int n = particles_.size();
-#pragma omp parallel for schedule(dynamic, kChunk) firstprivate(stage) if (n > kParallelMin)
-    for (int p = 0; p < n; ++p) stage(p, stencil(p));
-  }
-
-  // Four particles at a time where they share a material (stage.four), in
-  // groups fixed by the index, so the same whatever the number of threads.
-  template <class Stage>
-  [[gnu::flatten]] SpeedMax max_speed(Stage stage) {
+  class CellGroup;
+  // f(cells) for each CellGroup, in parallel: groups share no particle and
+  // no cell. The sum of what they return.
+  template <class F>
+  [[gnu::flatten]] SpeedMax for_cell_groups(const GridView& g, const StepConfig&, F f) {
+    const std::size_t cells = static_cast<std::size_t>(g.nx - 1) * (g.ny - 1);
+    cell_volume_.resize(cells);  // each group clears its own cells
+    cell_mean_.resize(cells);
     double smax = 0;
     int bad = 0;
-    const int n = particles_.size(), groups = (n + 3) / 4;
-#pragma omp parallel for schedule(dynamic, kChunk / 4) firstprivate(stage) \
-    reduction(max : smax) reduction(+ : bad) if (n > kParallelMin)
-    for (int q = 0; q < groups; ++q) {
-      const int p = 4 * q, count = std::min(4, n - p);
-      double s[4];
-      if (count < 4 || !stage.four(p, s))
-        for (int k = 0; k < count; ++k) s[k] = stage(p + k);
-      for (int k = 0; k < count; ++k) {
-        if (s[k] >= 0.0 && std::isfinite(s[k]))
-          smax = std::max(smax, s[k]);
-        else
-          ++bad;
-      }
+    const int groups = strips_ * blocks_y_;
+#pragma omp parallel for schedule(dynamic, 1) firstprivate(f) reduction(max : smax) \
+    reduction(+ : bad) if (particles_.size() > kParallelMin)
+    for (int k = 0; k < groups; ++k) {
+      CellGroup cells(*this, k / blocks_y_, k % blocks_y_);
+      if (cells.empty()) continue;
+      const SpeedMax speed = f(cells);
+      smax = std::max(smax, speed.max);
+      bad += speed.bad;
     }
     return {smax, bad};
   }
 
-  // Volume-weighted mean of value(p) over the particles of each grid cell.
-  template <class Value>
-  CellMeanView cell_means(const GridView& g, Value value) {
-    const ParticleView P = particles_.view();
-    const int cells = clear_cells(g);
-    // A cell's particles all lie in one block, so strips never share a cell.
-#pragma omp parallel for schedule(dynamic, 1) firstprivate(value) if (P.n > kParallelMin)
-    for (int strip = 0; strip < strips_; ++strip) {
-      for_each_in_strip(strip, [&](int p) {
-        const int c = particle_cell_[p];
-        cell_volume_[c] += P.vol[p];
-        cell_mean_[c] += P.vol[p] * value(p);
-      });
+  // The cells of one block row of one strip (kStrip blocks of kBlock x
+  // kBlock cells) and their particles, which lie together in the block
+  // order: a few hundred, so what the driver's stages pass from one of
+  // these loops to the next (gradients, displacements, cell means) is still
+  // in the cache when the next reads it, where loops over all particles
+  // had written it out to memory and read it back.
+  class CellGroup {
+   public:
+    CellGroup(OpenMpBackend& b, int strip, int by) : b_(b) {
+      first_ = b.group_start(strip, by);
+      last_ = b.group_start(strip, by + 1);
+      i0_ = strip * kStrip * kBlock;
+      i1_ = std::min(i0_ + kStrip * kBlock, b.cells_x_);
+      j0_ = by * kBlock;
+      j1_ = std::min(j0_ + kBlock, b.cells_y_);
     }
-#pragma omp parallel for if (cells > kParallelMin)
-    for (int c = 0; c < cells; ++c)
-      if (cell_volume_[c] > 0.0) cell_mean_[c] /= cell_volume_[c];
-    return {cell_mean_.data(), particle_cell_.data()};
-  }
+    bool empty() const { return first_ == last_; }
+
+    template <class Stage>
+    void for_each_particle(Stage stage) const {
+      for (int q = first_; q < last_; ++q) stage(b_.order_[q]);
+    }
+    template <class Stage>
+    void for_each_particle_stencil(const GridView&, const StepConfig&, Stage stage) const {
+      for (int q = first_; q < last_; ++q) stage(b_.order_[q], b_.stencil(b_.order_[q]));
+    }
+
+    // Four particles at a time where four in a row are also consecutive in
+    // memory and share a material (stage.four): which ones depends on the
+    // block order alone, so not on the number of threads.
+    template <class Stage>
+    SpeedMax max_speed(Stage stage) const {
+      const int* const order = b_.order_.data();
+      SpeedMax out;
+      for (int q = first_; q < last_;) {
+        const int p = order[q];
+        double s[4];
+        int count = 4;
+        if (!(q + 4 <= last_ && order[q + 1] == p + 1 && order[q + 2] == p + 2 &&
+              order[q + 3] == p + 3 && stage.four(p, s))) {
+          s[0] = stage(p);
+          count = 1;
+        }
+        for (int k = 0; k < count; ++k) {
+          if (s[k] >= 0.0 && std::isfinite(s[k]))
+            out.max = std::max(out.max, s[k]);
+          else
+            ++out.bad;
+        }
+        q += count;
+      }
+      return out;
+    }
+
+    // Volume-weighted mean of value(p) over the particles of each of the
+    // group's cells, each cell's in index order.
+    template <class Value>
+    CellMeanView cell_means(const GridView&, Value value) const {
+      double *const volume = b_.cell_volume_.data(), *const mean = b_.cell_mean_.data();
+      const double* const vol = b_.particles_.vol.data();
+      const int* const cell = b_.particle_cell_.data();
+      for (int j = j0_; j < j1_; ++j)
+        for (int i = i0_; i < i1_; ++i) volume[j * b_.cells_x_ + i] = mean[j * b_.cells_x_ + i] = 0.0;
+      for (int q = first_; q < last_; ++q) {
+        const int p = b_.order_[q], c = cell[p];
+        volume[c] += vol[p];
+        mean[c] += vol[p] * value(p);
+      }
+      for (int j = j0_; j < j1_; ++j)
+        for (int i = i0_; i < i1_; ++i) {
+          const int c = j * b_.cells_x_ + i;
+          if (volume[c] > 0.0) mean[c] /= volume[c];
+        }
+      return {mean, cell};
+    }
+
+   private:
+    OpenMpBackend& b_;
+    int first_, last_;      // the particles order_[first_ .. last_)
+    int i0_, i1_, j0_, j1_;  // the cells [i0_, i1_) x [j0_, j1_)
+  };
 
  private:
   StencilRefs stencil(int p) const { return {weights_[p], derivatives_[p], places_[p]}; }
+
+  // Where the particles of strip's block row by start in order_ (by =
+  // blocks_y_: where the strip's end): blocks are numbered strip by strip,
+  // in each strip block row by block row, so that a strip's particles, and
+  // a row of it, lie together in the block order and, once permuted, in
+  // memory: the scatters and the cell groups then read it in sequence.
+  int group_start(int strip, int by) const {
+    return block_start_[(strip * blocks_y_ + by) * kStrip];
+  }
 
   // The particles of a strip, block row by block row, each block's in
   // index order.
   template <class F>
   void for_each_in_strip(int strip, F&& f) const {
-    const int bx0 = strip * kStrip, bx1 = std::min(bx0 + kStrip, blocks_x_);
-    for (int by = 0; by < blocks_y_; ++by) {
-      const int row = by * blocks_x_;
-      for (int q = block_start_[row + bx0]; q < block_start_[row + bx1]; ++q) f(order_[q]);
-    }
+    for (int q = group_start(strip, 0); q < group_start(strip, blocks_y_); ++q) f(order_[q]);
   }
 
   [[gnu::flatten]] void bin_particles(const GridView& grid, const StepConfig& config) {
     const ParticleView P = particles_.view();
     const GridView g = grid;
     const StepConfig c = config;
-    const int cells_x = g.nx - 1, cells_y = g.ny - 1;
-    const int bx = blocks_x_ = (cells_x + kBlock - 1) / kBlock;
-    blocks_y_ = (cells_y + kBlock - 1) / kBlock;
+    const int cells_x = cells_x_ = g.nx - 1, cells_y = cells_y_ = g.ny - 1;
+    blocks_x_ = (cells_x + kBlock - 1) / kBlock;
+    const int by = blocks_y_ = (cells_y + kBlock - 1) / kBlock;
     strips_ = (blocks_x_ + kStrip - 1) / kStrip;
-    const int blocks = blocks_x_ * blocks_y_;
+    const int blocks = strips_ * blocks_y_ * kStrip;
     StencilWeights* const w = weights_.data();
     StencilDerivatives* const d = derivatives_.data();
     StencilPlace* const r = places_.data();
     int *const block = particle_block_.data(), *const cell = particle_cell_.data();
     const auto place = [&](int p) {
       const int ci = r[p].cell_x, cj = r[p].cell_y;
-      block[p] = (cj / kBlock) * bx + ci / kBlock;
+      const int bi = ci / kBlock;
+      block[p] = ((bi / kStrip) * by + cj / kBlock) * kStrip + bi % kStrip;
       cell[p] = cj * cells_x + ci;
     };
     // Four particles at a time (make_stencils_x4): in groups fixed by the
@@ -209,13 +273,51 @@ class OpenMpBackend : public HostBackend {
       });
       place(p);
     }
-    // Stable counting sort: within a block particles keep their index order,
-    // which fixes the order of the sums at every node.
+    sort_by_block(blocks);
+  }
+
+  // Stable counting sort: within a block particles keep their index order,
+  // which fixes the order of the sums at every node. Each thread counts and
+  // places one contiguous range of the particles, the ranges in index
+  // order, so the order is the serial sort's whatever the number of
+  // threads; done on one, it kept the other waiting 6 % of a two-thread
+  // step (1e5 particles).
+  void sort_by_block(int blocks) {
+    const int n = particles_.size();
+    const int* const block = particle_block_.data();
+    int* const order = order_.data();
     block_start_.assign(blocks + 1, 0);
-    for (int p = 0; p < P.n; ++p) ++block_start_[particle_block_[p] + 1];
-    for (int b = 0; b < blocks; ++b) block_start_[b + 1] += block_start_[b];
-    next_.assign(block_start_.begin(), block_start_.end() - 1);
-    for (int p = 0; p < P.n; ++p) order_[next_[particle_block_[p]]++] = p;
+#pragma omp parallel if (n > kParallelMin)
+    {
+      int t = 0, threads = 1;
+#ifdef _OPENMP
+      t = omp_get_thread_num();
+      threads = omp_get_num_threads();
+#endif
+#pragma omp single
+      next_.assign(static_cast<std::size_t>(threads) * blocks, 0);
+      // next_: thread t's count in each block, then its next place there.
+      int* const next = next_.data() + static_cast<std::size_t>(t) * blocks;
+      const int p0 = static_cast<int>(static_cast<long>(n) * t / threads);
+      const int p1 = static_cast<int>(static_cast<long>(n) * (t + 1) / threads);
+      for (int p = p0; p < p1; ++p) ++next[block[p]];
+#pragma omp barrier
+#pragma omp single
+      {
+        int start = 0;
+        for (int b = 0; b < blocks; ++b) {
+          block_start_[b] = start;
+          for (int u = 0; u < threads; ++u) {
+            int& slot = next_[static_cast<std::size_t>(u) * blocks + b];
+            const int count = slot;
+            slot = start;
+            start += count;
+          }
+        }
+        block_start_[blocks] = start;
+      }
+      for (int p = p0; p < p1; ++p) order[next[block[p]]++] = p;
+    }
   }
 
   // The particles' stencils, a part an array (stages.hpp, Stencil2D).
@@ -224,7 +326,7 @@ class OpenMpBackend : public HostBackend {
   std::vector<StencilPlace> places_;
   // Particles grouped by block of kBlock x kBlock cells (counting sort).
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, next_;
-  int blocks_x_ = 0, blocks_y_ = 0, strips_ = 0;
+  int blocks_x_ = 0, blocks_y_ = 0, strips_ = 0, cells_x_ = 0, cells_y_ = 0;
 };
 
 }  // namespace runout

@@ -17,6 +17,9 @@
 //   sum(a, count)                      a sum over nodes
 //   fill(a, count, v)
 //   cell_means(g, value)               per-cell volume-weighted means of value(p)
+//   for_cell_groups(g, c, f)           f(cells) for groups of whole cells, each
+//                                      with the loops above over its particles;
+//                                      the sum of the SpeedMax they return
 //   gradients(), scratch(), xi_start(), nonlocal_average(...)
 //   materials(), kernel_config(c), host_particles()
 //
@@ -419,17 +422,26 @@ void Driver<Backend>::step(double dt) {
 
   const GradientView L = backend_.gradients();
   const StepScratch s = backend_.scratch();
-  backend_.for_each_particle_stencil(g, c, stage::Gradient{g, dt, s, L});
-  const CellMeanView rate =
-      smooth_volumetric_ ? backend_.cell_means(g, stage::VolumetricRate{L}) : CellMeanView{};
-  if (nonlocal_.active()) backend_.for_each_particle(stage::CopyXi{P, backend_.xi_start()});
-  const SpeedMax speed = backend_.max_speed(
-      stage::Stress{P, L, rate, backend_.materials(), dt, s, c, limits_});
+  const bool nonlocal = nonlocal_.active();
+  // Stages 6 and 7 need of other particles only those of the particle's own
+  // cell (the volumetric smoothing's means), so they run group by group of
+  // whole cells.
+  const SpeedMax speed = backend_.for_cell_groups(g, c, [&](auto& cells) {
+    cells.for_each_particle_stencil(g, c, stage::Gradient{g, dt, s, L});
+    const CellMeanView rate =
+        smooth_volumetric_ ? cells.cell_means(g, stage::VolumetricRate{L}) : CellMeanView{};
+    if (nonlocal) cells.for_each_particle(stage::CopyXi{P, backend_.xi_start()});
+    const SpeedMax sp =
+        cells.max_speed(stage::Stress{P, L, rate, backend_.materials(), dt, s, c, limits_});
+    // A group with a failed particle is left as its update left it, for
+    // describe_faults: its cell means would spread the failure to its cells.
+    if (smooth_volumetric_ && sp.bad == 0)
+      cells.for_each_particle(stage::SetMeanStress{P, cells.cell_means(g, stage::MeanStress{P})});
+    return sp;
+  });
   if (speed.bad > 0) fail(dt);
-  if (nonlocal_.active()) regularise_softening();
-  if (smooth_volumetric_)
-    backend_.for_each_particle(
-        stage::SetMeanStress{P, backend_.cell_means(g, stage::MeanStress{P})});
+  // After the mean stress, which it neither reads nor changes.
+  if (nonlocal) regularise_softening();
   max_signal_speed_ = speed.max;
   basal_shear_force_ = basal;
   time_ += dt;
