@@ -98,24 +98,53 @@ TEST(ShapeFunctions, CellLeftStartHoldsTheSameWeightsOneNodeOver) {
   }
 }
 
+// The weight and derivative a GIMP stencil gives node i, zero where it
+// gives none.
+std::pair<double, double> node_weight(double xp, double origin, double h, double lp, int node) {
+  Stencil1D s;
+  stencil_1d(ShapeKind::Gimp, xp, origin, h, lp, s, StencilStart::CellLeft);
+  const int k = node - s.first;
+  if (k < 0 || k >= kStencilNodes) return {0.0, 0.0};
+  return {s.w[k], s.dw[k]};
+}
+
+// Node 0 seen from either side of each boundary of the pieces (|r| = lp,
+// h - lp, h + lp), of a cell edge and of a cell's middle.
 TEST(ShapeFunctions, GimpIsContinuousAcrossZoneBoundaries) {
   const double h = 1.0, lp = 0.25, eps = 1e-9;
-  for (double r : {lp, h - lp, h + lp}) {
-    double a, da, b, db;
-    gimp_1d(r - eps, gimp_scale(h, lp), a, da);
-    gimp_1d(r + eps, gimp_scale(h, lp), b, db);
+  for (double r : {lp, h - lp, h + lp, 0.5 * h, h, -lp, -(h - lp), -(h + lp), -h}) {
+    const auto [a, da] = node_weight(r - eps, 0.0, h, lp, 0);
+    const auto [b, db] = node_weight(r + eps, 0.0, h, lp, 0);
     EXPECT_NEAR(a, b, 1e-8) << "r = " << r;
     EXPECT_NEAR(da, db, 1e-7) << "r = " << r;
   }
 }
 
-TEST(ShapeFunctions, LinearUsesTheCellsConstantGradient) {
-  Stencil1D s;
-  stencil_1d(ShapeKind::Linear, 2.0, 0.0, 0.5, 0.125, s);  // on node 4
-  EXPECT_EQ(s.first, 4);
-  EXPECT_DOUBLE_EQ(s.w[0], 1.0);
-  EXPECT_DOUBLE_EQ(s.dw[0], -2.0);
-  EXPECT_DOUBLE_EQ(s.dw[1], 2.0);
+// The uGIMP weight of Bardenhagen & Kober (2004, eq. 39) node by node,
+// written out by its pieces: the stencil's weights, each node's from the
+// particle's place in its cell, are the same.
+TEST(ShapeFunctions, GimpStencilMatchesThePiecewiseFormNodeByNode) {
+  const double h = 0.37, origin = -12.345;
+  const auto piecewise = [&](double r, double lp) {
+    const double a = std::fabs(r), s = r < 0.0 ? -1.0 : 1.0;
+    if (a < lp) return std::pair{1.0 - (r * r + lp * lp) / (2.0 * h * lp), -r / (h * lp)};
+    if (a < h - lp) return std::pair{1.0 - a / h, -s / h};
+    if (a < h + lp) {
+      const double b = h + lp - a;
+      return std::pair{b * b / (4.0 * h * lp), -s * b / (2.0 * h * lp)};
+    }
+    return std::pair{0.0, 0.0};
+  };
+  for (double lp : {0.125 * h, 0.25 * h, 0.4 * h, 0.5 * h})
+    for (int i = 0; i <= 400; ++i) {
+      const double xp = origin + 5.0 * h + 2.0 * h * i / 400.0;
+      for (int node = 3; node <= 9; ++node) {
+        const auto [w, dw] = node_weight(xp, origin, h, lp, node);
+        const auto [w_ref, dw_ref] = piecewise(xp - (origin + node * h), lp);
+        EXPECT_NEAR(w, w_ref, 1e-13) << "lp = " << lp << ", xp = " << xp << ", node " << node;
+        EXPECT_NEAR(dw * h, dw_ref * h, 1e-12) << "lp = " << lp << ", xp = " << xp << ", node " << node;
+      }
+    }
 }
 
 // The CPU backend makes the stencils four particles at a time

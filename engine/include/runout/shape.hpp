@@ -37,10 +37,10 @@ struct Stencil1D {
   double dw[kStencilNodes];  // their derivatives d/dx
 };
 
-// The factors gimp_1d multiplies by, once per particle and direction: two
-// divisions where the piecewise form divided in each piece it took. T:
-// double for one particle, Lanes for four (make_stencils_x4, lane k
-// particle k's).
+// The factors gimp_cell_nodes multiplies by, once per particle and
+// direction: two divisions where the piecewise form divided in each piece
+// it took. T: double for one particle, Lanes for four (stencil_1d_x4, lane
+// k particle k's).
 template <class T>
 struct GimpScaleOf {
   T h, lp;
@@ -54,41 +54,52 @@ RUNOUT_HD inline GimpScaleOf<T> gimp_scale(const T& h, const T& lp) {
   return {h, lp, 1.0 / h, 1.0 / (h * lp)};
 }
 
-RUNOUT_HD inline Lanes as_lanes(double x) { return splat(x); }
-RUNOUT_HD inline Lanes as_lanes(const Lanes& x) { return x; }
+// uGIMP weights and derivatives (Bardenhagen & Kober 2004, eq. 39, "uGIMP":
+// lp kept at its initial value): the convolution of the linear hat of
+// cell size h with a box of half-width lp <= h / 2. For a particle at
+// distance r = xp - x_i from a node, a = |r|, s = sign(r):
+//   a < lp:             N = 1 - (r^2 + lp^2) / (2 h lp),  dN/dx = -r / (h lp)
+//   lp <= a < h - lp:   N = 1 - a / h,                    dN/dx = -s / h
+//   h - lp <= a:        N = b^2 / (4 h lp),               dN/dx = -s b / (2 h lp)
+// with b = h + lp - a held at zero or above, which is also the zero beyond
+// the support. Here for the four nodes c - 1 .. c + 2 around a particle at
+// fraction f = (xp - x_c) / h in [0, 1) of its cell c, one particle (T
+// double) or four (T Lanes, lane k particle k's). The nodes lie at
+// r = h (1 + f), h f, h (f - 1) and h (f - 2): the outer two are at least h
+// away, where only the last piece applies, so only the inner two take the
+// three-piece form. Every piece is evaluated and one selected, without
+// branches: which piece a node is in changes from particle to particle, so
+// a branch on it is unpredictable.
+RUNOUT_HD inline double select_less(double a, double b, double x, double y) { return a < b ? x : y; }
+RUNOUT_HD inline double splat_like(const double&, double v) { return v; }
+RUNOUT_HD inline Lanes splat_like(const Lanes&, double v) { return splat(v); }
 
-// uGIMP weight and derivative for a particle at distance r = xp - xi from a
-// node, cell size h, particle half-width lp <= h/2: the convolution of the
-// linear hat with a box of width 2 lp (Bardenhagen & Kober 2004, eq. 39,
-// "uGIMP": lp kept at its initial value), for the four nodes of a stencil
-// row at once (lanes.hpp). Every piece is evaluated and one selected,
-// without branches: a particle's nodes lie in different pieces, and which
-// ones changes from particle to particle, so a branch on the piece is
-// unpredictable. The outer piece, with its bracket h + lp - |r| held at
-// zero or above, is also the zero beyond the support.
 template <class T>
-RUNOUT_HD inline void gimp_lanes(const Lanes& r, const GimpScaleOf<T>& k, Lanes& w, Lanes& dw) {
-  const Lanes zero = splat(0.0);
-  const Lanes a = select_less(r, zero, -r, r);  // |r|
-  const Lanes s = select_less(r, zero, splat(-1.0), splat(1.0));
-  const Lanes bracket = k.h + k.lp + -a;
-  const Lanes b = select_less(bracket, zero, zero, bracket);
-  const Lanes w_inner = 1.0 - 0.5 * (r * r + k.lp * k.lp) * k.inv_hlp;
-  const Lanes w_linear = 1.0 - a * k.inv_h;
-  const Lanes w_outer = 0.25 * b * b * k.inv_hlp;
-  const Lanes lp = as_lanes(k.lp), linear_end = as_lanes(k.h - k.lp);
-  w = select_less(a, lp, w_inner, select_less(a, linear_end, w_linear, w_outer));
-  const Lanes dw_inner = -r * k.inv_hlp, dw_linear = -s * k.inv_h;
-  const Lanes dw_outer = -0.5 * s * b * k.inv_hlp;
-  dw = select_less(a, lp, dw_inner, select_less(a, linear_end, dw_linear, dw_outer));
-}
-
-// One node's weight and derivative.
-RUNOUT_HD inline void gimp_1d(double r, const GimpScale& k, double& w, double& dw) {
-  Lanes wl, dwl;
-  gimp_lanes(splat(r), k, wl, dwl);
-  w = lane(wl, 0);
-  dw = lane(dwl, 0);
+RUNOUT_HD inline void gimp_cell_nodes(const T& f, const GimpScaleOf<T>& k, T w[4], T dw[4]) {
+  const T zero = splat_like(f, 0.0);
+  const T hf = k.h * f, hg = k.h + -hf;  // distances to the cell's nodes c and c + 1
+  const T half = 0.5 * k.inv_hlp, quarter = 0.25 * k.inv_hlp;
+  // The outer nodes: the bracket h + lp - |r| is lp - h f and lp - h (1 - f).
+  const T b0 = k.lp + -hf, b3 = k.lp + -hg;
+  const T c0 = select_less(b0, zero, zero, b0), c3 = select_less(b3, zero, zero, b3);
+  w[0] = c0 * c0 * quarter;
+  dw[0] = -(c0 * half);
+  w[3] = c3 * c3 * quarter;
+  dw[3] = c3 * half;
+  // The inner nodes at distance a, on the side s (+1: the node behind the
+  // particle, -1: ahead of it).
+  const T lp = k.lp, linear_end = k.h + -k.lp, reach = k.h + k.lp;
+  const auto inner = [&](const T& a, double s, T& wi, T& dwi) {
+    const T b = reach + -a;
+    const T w_inner = 1.0 - (a * a + lp * lp) * half, w_linear = 1.0 - a * k.inv_h;
+    const T w_outer = b * b * quarter;
+    wi = select_less(a, lp, w_inner, select_less(a, linear_end, w_linear, w_outer));
+    const T dw_inner = -s * a * k.inv_hlp, dw_linear = -s * k.inv_h;
+    const T dw_outer = -s * b * half;
+    dwi = select_less(a, lp, dw_inner, select_less(a, linear_end, dw_linear, dw_outer));
+  };
+  inner(hf, 1.0, w[1], dw[1]);
+  inner(hg, -1.0, w[2], dw[2]);
 }
 
 // Stencil of a particle at xp on the grid whose node 0 lies at origin.
@@ -118,40 +129,46 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
     s.w[3] = s.dw[3] = 0.0;
     return;
   }
-  // arithmetic: a branch here is unpredictable
-  s.first = c - (start == StencilStart::CellLeft || frac < 0.5 ? 1 : 0);
+  double w[kStencilNodes], dw[kStencilNodes];
+  gimp_cell_nodes(frac, gimp_scale(h, lp), w, dw);
+  // Nearest: from the particle's half of its cell, the nodes c - 1 .. c + 1
+  // or c .. c + 2 (the fourth node has zero weight either way); by
+  // selection: a branch here is unpredictable.
+  const bool shift = start == StencilStart::Nearest && !(frac < 0.5);
+  s.first = c - (shift ? 0 : 1);
   s.r0 = origin + s.first * h - xp;
-  // The node of the four that is not in the stencil is at least h + lp
-  // away: outside the support, its weight and derivative are zero.
-  const Lanes r = xp - (origin + lane_offsets(s.first, 1.0) * h);
-  Lanes w, dw;
-  gimp_lanes(r, gimp_scale(h, lp), w, dw);
-  store_lanes(s.w, w);
-  store_lanes(s.dw, dw);
+  for (int j = 0; j < kStencilNodes; ++j) {
+    s.w[j] = shift ? (j < 3 ? w[j + 1] : 0.0) : w[j];
+    s.dw[j] = shift ? (j < 3 ? dw[j + 1] : 0.0) : dw[j];
+  }
 }
 
 // stencil_1d (GIMP) of four particles at once: lane k of xp and lp is
 // particle k's, whose stencil goes to out(k, cell, first, r0, w, dw) (w and
-// dw that particle's four nodes, as Lanes). The same operations, so
-// the same weights to rounding (the compiler may fuse other pairs of
-// them into multiply-adds); a third of the arithmetic, as each gimp_lanes
-// evaluates one node of four particles, not the four of one, whose last
-// is always zero.
+// dw that particle's four nodes, as Lanes). The same operations, so the
+// same weights to rounding (the compiler may fuse other pairs of them into
+// multiply-adds).
 template <class Out>
 inline void stencil_1d_x4(const Lanes& xp, double origin, double h, const Lanes& lp,
                           StencilStart start, Out&& out) {
   const Lanes u = (xp - origin) / h;
   const Lanes cell = floor_lanes(u);
-  const Lanes first = start == StencilStart::CellLeft
-                          ? cell - 1.0
-                          : cell - select_less(u - cell, splat(0.5), splat(1.0), splat(0.0));
-  const Lanes r0 = origin + first * h - xp;
-  const GimpScaleOf<Lanes> k = gimp_scale(splat(h), lp);
+  const Lanes frac = u - cell;
+  // 1 / h once, not in every lane (gimp_scale)
+  const GimpScaleOf<Lanes> k{splat(h), lp, splat(1.0 / h), 1.0 / (h * lp)};
   Lanes w[kStencilNodes], dw[kStencilNodes];
-  // Nearest: the fourth node is always outside the support.
-  const int nodes = start == StencilStart::CellLeft ? 4 : 3;
-  for (int j = 0; j < nodes; ++j) gimp_lanes(xp - (origin + (first + double(j)) * h), k, w[j], dw[j]);
-  if (nodes == 3) w[3] = dw[3] = splat(0.0);
+  gimp_cell_nodes(frac, k, w, dw);
+  Lanes first = cell - 1.0;
+  if (start == StencilStart::Nearest) {
+    const Lanes half = splat(0.5);
+    first = first + select_less(frac, half, splat(0.0), splat(1.0));
+    for (int j = 0; j < 3; ++j) {
+      w[j] = select_less(frac, half, w[j], w[j + 1]);
+      dw[j] = select_less(frac, half, dw[j], dw[j + 1]);
+    }
+    w[3] = dw[3] = splat(0.0);
+  }
+  const Lanes r0 = origin + first * h - xp;
   transpose_lanes(w);
   transpose_lanes(dw);
   for (int q = 0; q < 4; ++q)
