@@ -37,8 +37,7 @@ __global__ void fill_kernel(double* a, int n, double v) {
 __global__ void bin_kernel(ParticleView P, GridView g, int cells_x, int* key, int* value) {
   const int p = blockIdx.x * blockDim.x + threadIdx.x;
   if (p >= P.n) return;
-  const int ci = static_cast<int>(floor((P.x[p] - g.ox) / g.h));
-  const int cj = static_cast<int>(floor((P.y[p] - g.oy) / g.h));
+  const int ci = cell_of(P.x[p], g.ox, g.h), cj = cell_of(P.y[p], g.oy, g.h);
   key[p] = cj * cells_x + ci;
   value[p] = p;
 }

@@ -61,9 +61,8 @@ class OpenMpBackend : public HostBackend {
     const int n = particles_.size();
     particle_block_.assign(n, 0);
     particle_cell_.assign(n, 0);
-    weights_.resize(n);
-    derivatives_.resize(n);
-    places_.resize(n);
+    lx_.assign(n, 0.0);
+    ly_.assign(n, 0.0);
     order_.assign(n, 0);
   }
 
@@ -84,7 +83,7 @@ class OpenMpBackend : public HostBackend {
     return {xmin, xmax, ymin, ymax, non_finite};
   }
 
-  // Each particle's block, cell and stencil; every kReorderInterval steps
+  // Each particle's block, cell and domain; every kReorderInterval steps
   // the particles are first stored in block order, so that the block-by-block
   // loops read memory in sequence.
   void bin(const GridView& g, const StepConfig& c, long step) {
@@ -102,7 +101,10 @@ class OpenMpBackend : public HostBackend {
     for (int colour = 0; colour < 2; ++colour) {
 #pragma omp parallel for schedule(dynamic, 1) firstprivate(stage) if (order_.size() > kParallelMin)
       for (int strip = colour; strip < strips_; strip += 2)
-        for_each_in_strip(strip, [&](int p) { stage(p, stencil(p), add, lower); });
+        for_each_four(group_start(strip, 0), group_start(strip, blocks_y_),
+                      [&](const int* p, const Stencil2D* st, int count) {
+                        for (int k = 0; k < count; ++k) stage(p[k], st[k], add, lower);
+                      });
     }
   }
 
@@ -162,7 +164,9 @@ class OpenMpBackend : public HostBackend {
     }
     template <class Stage>
     void for_each_particle_stencil(const GridView&, const StepConfig&, Stage stage) const {
-      for (int q = first_; q < last_; ++q) stage(b_.order_[q], b_.stencil(b_.order_[q]));
+      b_.for_each_four(first_, last_, [&](const int* p, const Stencil2D* st, int count) {
+        for (int k = 0; k < count; ++k) stage(p[k], st[k]);
+      });
     }
 
     // Four particles at a time where four in a row are also consecutive in
@@ -221,7 +225,39 @@ class OpenMpBackend : public HostBackend {
   };
 
  private:
-  StencilRefs stencil(int p) const { return {weights_[p], derivatives_[p], places_[p]}; }
+  // The stencils of particles p[0 .. 3], four at a time (GIMP), from their
+  // positions and the half-widths the binning stored: made again in each
+  // pass that needs them, at about 40 instructions a particle, where
+  // storing the 160 bytes of each and reading them back in three passes
+  // made the step wait on memory (docs/engine.md, "The step"). Out of line,
+  // so that its arithmetic is compiled once: a particle has the same
+  // stencil in every pass, whichever three it is made with.
+  [[gnu::noinline, gnu::flatten]] void make_stencils(const int p[4], Stencil2D st[4]) const {
+    const double *x = particles_.x.data(), *y = particles_.y.data();
+    if (config_.shape == ShapeKind::Gimp) {
+      gimp_stencils_x4(grid_view_, gather_lanes(x, p), gather_lanes(y, p),
+                       gather_lanes(lx_.data(), p), gather_lanes(ly_.data(), p), st);
+      return;
+    }
+    for (int k = 0; k < 4; ++k)
+      stencil_at(grid_view_, config_, x[p[k]], y[p[k]], lx_[p[k]], ly_[p[k]], st[k]);
+  }
+
+  // f(p, st, count) for the particles order_[first .. last), four at a
+  // time: p[0 .. count - 1] the particles, st their stencils (p[count .. 3]
+  // copies of the last).
+  template <class F>
+  void for_each_four(int first, int last, F&& f) const {
+    for (int q = first; q < last; q += 4) {
+      const int count = std::min(4, last - q);
+      const int end = order_[q + count - 1];
+      const int p[4] = {order_[q], count > 1 ? order_[q + 1] : end, count > 2 ? order_[q + 2] : end,
+                        end};
+      Stencil2D st[4];
+      make_stencils(p, st);
+      f(p, st, count);
+    }
+  }
 
   // Where the particles of strip's block row by start in order_ (by =
   // blocks_y_: where the strip's end): blocks are numbered strip by strip,
@@ -230,13 +266,6 @@ class OpenMpBackend : public HostBackend {
   // memory: the scatters and the cell groups then read it in sequence.
   int group_start(int strip, int by) const {
     return block_start_[(strip * blocks_y_ + by) * kStrip];
-  }
-
-  // The particles of a strip, block row by block row, each block's in
-  // index order.
-  template <class F>
-  void for_each_in_strip(int strip, F&& f) const {
-    for (int q = group_start(strip, 0); q < group_start(strip, blocks_y_); ++q) f(order_[q]);
   }
 
   [[gnu::flatten]] void bin_particles(const GridView& grid, const StepConfig& config) {
@@ -248,31 +277,34 @@ class OpenMpBackend : public HostBackend {
     const int by = blocks_y_ = (cells_y + kBlock - 1) / kBlock;
     strips_ = (blocks_x_ + kStrip - 1) / kStrip;
     const int blocks = strips_ * blocks_y_ * kStrip;
-    StencilWeights* const w = weights_.data();
-    StencilDerivatives* const d = derivatives_.data();
-    StencilPlace* const r = places_.data();
+    double *const lx = lx_.data(), *const ly = ly_.data();
     int *const block = particle_block_.data(), *const cell = particle_cell_.data();
+    // The cell as the stencil finds it: its nodes must lie in the strip.
     const auto place = [&](int p) {
-      const int ci = r[p].cell_x, cj = r[p].cell_y;
+      const int ci = cell_of(P.x[p], g.ox, g.h), cj = cell_of(P.y[p], g.oy, g.h);
       const int bi = ci / kBlock;
       block[p] = ((bi / kStrip) * by + cj / kBlock) * kStrip + bi % kStrip;
       cell[p] = cj * cells_x + ci;
     };
-    // Four particles at a time (make_stencils_x4): in groups fixed by the
-    // index, so the same whatever the number of threads.
+    // Four particles at a time (domain_half_widths_4): in groups fixed by
+    // the index, so the same whatever the number of threads.
     const int groups = P.n / 4;
+    const bool gimp = c.shape == ShapeKind::Gimp;
 #pragma omp parallel for schedule(dynamic, kChunk / 4) firstprivate(P, g, c) \
     if (P.n > kParallelMin)
     for (int q = 0; q < groups; ++q) {
-      make_stencils_x4(g, c, P, 4 * q, w + 4 * q, d + 4 * q, r + 4 * q);
-      for (int p = 4 * q; p < 4 * q + 4; ++p) place(p);
+      if (gimp) domain_half_widths_4(P, 4 * q, c, g.h, lx + 4 * q, ly + 4 * q);
+      for (int p = 4 * q; p < 4 * q + 4; ++p) {
+        if (!gimp) domain_half_widths(P, p, c, g.h, lx[p], ly[p]);
+        place(p);
+      }
     }
     for (int p = 4 * groups; p < P.n; ++p) {
-      make_stencil(g, c, P, p, [&](const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
-        set_stencil(x, y, lx, ly, w[p], d[p], r[p]);
-      });
+      domain_half_widths(P, p, c, g.h, lx[p], ly[p]);
       place(p);
     }
+    grid_view_ = g;
+    config_ = c;
     sort_by_block(blocks);
   }
 
@@ -320,10 +352,11 @@ class OpenMpBackend : public HostBackend {
     }
   }
 
-  // The particles' stencils, a part an array (stages.hpp, Stencil2D).
-  std::vector<StencilWeights> weights_;
-  std::vector<StencilDerivatives> derivatives_;
-  std::vector<StencilPlace> places_;
+  // The half-widths of the particles' domains at the start of the step,
+  // and the grid and configuration of its stencils.
+  StaggeredArray lx_, ly_;
+  GridView grid_view_{};
+  StepConfig config_{};
   // Particles grouped by block of kBlock x kBlock cells (counting sort).
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, next_;
   int blocks_x_ = 0, blocks_y_ = 0, strips_ = 0, cells_x_ = 0, cells_y_ = 0;

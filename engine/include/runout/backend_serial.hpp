@@ -50,8 +50,7 @@ class SerialDeviceBackend : public HostBackend {
     const int cells = (g.nx - 1) * (g.ny - 1);
     std::vector<int> key(P.n), start(cells + 1, 0), order(P.n);
     for (int p = 0; p < P.n; ++p) {
-      const int ci = static_cast<int>(std::floor((P.x[p] - g.ox) / g.h));
-      const int cj = static_cast<int>(std::floor((P.y[p] - g.oy) / g.h));
+      const int ci = cell_of(P.x[p], g.ox, g.h), cj = cell_of(P.y[p], g.oy, g.h);
       key[p] = cj * (g.nx - 1) + ci;
       ++start[key[p] + 1];
     }

@@ -32,6 +32,9 @@ struct Lanes {
 };
 
 RUNOUT_HD inline Lanes load_lanes(const double* a) { return {{a[0], a[1], a[2], a[3]}}; }
+RUNOUT_HD inline Lanes gather_lanes(const double* a, const int* i) {
+  return {{a[i[0]], a[i[1]], a[i[2]], a[i[3]]}};
+}
 RUNOUT_HD inline Lanes splat(double x) { return {{x, x, x, x}}; }
 RUNOUT_HD inline double lane(const Lanes& a, int k) { return a.v[k]; }
 
@@ -74,6 +77,9 @@ inline Lanes load_lanes(const double* a) {
   Lanes r;
   std::memcpy(&r.v, a, sizeof r.v);  // unaligned: a row starts at any node
   return r;
+}
+inline Lanes gather_lanes(const double* a, const int* i) {
+  return {Lanes::Vector{a[i[0]], a[i[1]], a[i[2]], a[i[3]]}};
 }
 inline Lanes splat(double x) { return {Lanes::Vector{x, x, x, x}}; }
 inline double lane(const Lanes& a, int k) { return a.v[k]; }

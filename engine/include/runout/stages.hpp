@@ -133,39 +133,29 @@ RUNOUT_HD inline double cfl_speed(const ParticleView& P, int p, const MaterialPa
 }
 
 // The particle's shape functions for the whole step: every stage evaluates
-// them at the start-of-step position, so they are computed once. In three
-// parts, by the stages that read them: the CPU backend keeps each part in
-// an array of its own (backend_openmp.hpp), so that g2p and the momentum
-// remap, which read only the weights, stream 64 bytes a particle where the
-// whole stencil was 176 (its samples fell by 18 %, 1e5 particles, one
-// thread). The stages take any St with members w, d and r of these types:
-// Stencil2D, which holds them (the CUDA and serial backends compute one in
-// each pass), or StencilRefs, which refers to them.
+// them at the start-of-step position, so a particle's stencil is the same
+// in every pass. In three parts, by the stages that read them (p2g all
+// three, g2p and the momentum remap the weights). The stages take any St
+// with members w, d and r of these types: Stencil2D, which every backend
+// computes in each pass (the CPU's four particles at a time).
 struct StencilWeights {       // every stage
   int first_x, first_y;       // grid indices of the rows' first node and of the first row
   double wx[kStencilNodes];   // weights along x of nodes first_x .. first_x + 3 (one zero)
-  double wy[3];               // weights along y of rows first_y .. first_y + 2
+  double wy[kStencilNodes];   // weights along y of rows first_y .. first_y + 2 (and a zero)
 };
 struct StencilDerivatives {   // p2g, the gradient, APIC's g2p
   double dwx[kStencilNodes];  // d/dx of wx
-  double dwy[3];              // d/dy of wy
+  double dwy[kStencilNodes];  // d/dy of wy
 };
 struct StencilPlace {         // p2g's gap to the base, APIC's offsets, the binning
   double lx, ly;              // the half-widths of the particle's domain (domain_half_widths)
   double r0x, r0y;            // the first node's offset from the particle, x_first - x_p
-  int cell_x, cell_y;         // the cell the particle is in
 };
 struct Stencil2D {
   StencilWeights w;
   StencilDerivatives d;
   StencilPlace r;
 };
-struct StencilRefs {
-  const StencilWeights& w;
-  const StencilDerivatives& d;
-  const StencilPlace& r;
-};
-
 // The parts from the two directions' Stencil1D (the y stencil's fourth
 // node has zero weight) and the domain's half-widths.
 RUNOUT_HD inline void set_stencil(const Stencil1D& x, const Stencil1D& y, double lx, double ly,
@@ -176,11 +166,11 @@ RUNOUT_HD inline void set_stencil(const Stencil1D& x, const Stencil1D& y, double
     w.wx[a] = x.w[a];
     d.dwx[a] = x.dw[a];
   }
-  for (int b = 0; b < 3; ++b) {
+  for (int b = 0; b < kStencilNodes; ++b) {
     w.wy[b] = y.w[b];
     d.dwy[b] = y.dw[b];
   }
-  r = StencilPlace{lx, ly, x.r0, y.r0, x.cell, y.cell};
+  r = StencilPlace{lx, ly, x.r0, y.r0};
 }
 
 // The half-widths of a particle's GIMP domain. Fixed: the initial square of
@@ -256,24 +246,20 @@ RUNOUT_HD inline void domain_half_widths(const ParticleView& P, int p, const Ste
   ly = std::min(cap, std::max(floor, t * wy));
 }
 
-// set(x, y, lx, ly) with the particle's Stencil1D along x and y and its
-// domain's half-widths.
-template <class Set>
-RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
-                                   int p, Set&& set) {
-  double lx, ly;
-  domain_half_widths(P, p, c, g.h, lx, ly);
-  Stencil1D x, y;
-  stencil_1d(c.shape, P.x[p], g.ox, g.h, lx, x, StencilStart::CellLeft);
-  stencil_1d(c.shape, P.y[p], g.oy, g.h, ly, y, StencilStart::Nearest);
-  set(x, y, lx, ly);
+// The stencil of a particle at (x, y) whose domain has half-widths lx, ly.
+RUNOUT_HD inline void stencil_at(const GridView& g, const StepConfig& c, double x, double y,
+                                 double lx, double ly, Stencil2D& s) {
+  Stencil1D sx, sy;
+  stencil_1d(c.shape, x, g.ox, g.h, lx, sx, StencilStart::CellLeft);
+  stencil_1d(c.shape, y, g.oy, g.h, ly, sy, StencilStart::Nearest);
+  set_stencil(sx, sy, lx, ly, s.w, s.d, s.r);
 }
 
 RUNOUT_HD inline void make_stencil(const GridView& g, const StepConfig& c, const ParticleView& P,
                                    int p, Stencil2D& s) {
-  make_stencil(g, c, P, p, [&](const Stencil1D& x, const Stencil1D& y, double lx, double ly) {
-    set_stencil(x, y, lx, ly, s.w, s.d, s.r);
-  });
+  double lx, ly;
+  domain_half_widths(P, p, c, g.h, lx, ly);
+  stencil_at(g, c, P.x[p], P.y[p], lx, ly, s);
 }
 
 // domain_half_widths of particles p .. p + 3, lane k particle p + k's, for
@@ -317,38 +303,40 @@ inline bool domain_half_widths_x4(const ParticleView& P, int p, const StepConfig
   return true;
 }
 
-// make_stencil of particles p .. p + 3 into the parts w[0 .. 3], d[0 .. 3]
-// and r[0 .. 3] (GIMP; with linear shape functions one at a time), written
-// in place: through a Stencil1D and set_stencil the binning took 14 % longer.
-inline void make_stencils_x4(const GridView& g, const StepConfig& c, const ParticleView& P, int p,
-                             StencilWeights* w, StencilDerivatives* d, StencilPlace* r) {
-  Lanes lx, ly;
-  if (c.shape != ShapeKind::Gimp || !domain_half_widths_x4(P, p, c, g.h, lx, ly)) {
-    for (int k = 0; k < 4; ++k)
-      make_stencil(g, c, P, p + k, [&](const Stencil1D& x, const Stencil1D& y, double wx, double wy) {
-        set_stencil(x, y, wx, wy, w[k], d[k], r[k]);
-      });
+// domain_half_widths of particles p .. p + 3 into lx[0 .. 3] and
+// ly[0 .. 3]: four at a time, or one at a time where a lane's basis needs
+// reducing.
+inline void domain_half_widths_4(const ParticleView& P, int p, const StepConfig& c, double h,
+                                 double* lx, double* ly) {
+  Lanes wx, wy;
+  if (domain_half_widths_x4(P, p, c, h, wx, wy)) {
+    store_lanes(lx, wx);
+    store_lanes(ly, wy);
     return;
   }
-  stencil_1d_x4(load_lanes(P.x + p), g.ox, g.h, lx, StencilStart::CellLeft,
-                [&](int k, int cell, int first, double r0, const Lanes& wl, const Lanes& dwl) {
-                  w[k].first_x = first;
-                  store_lanes(w[k].wx, wl);
-                  store_lanes(d[k].dwx, dwl);
-                  r[k].cell_x = cell;
-                  r[k].r0x = r0;
-                  r[k].lx = lane(lx, k);
+  for (int k = 0; k < 4; ++k) domain_half_widths(P, p + k, c, h, lx[k], ly[k]);
+}
+
+// The GIMP stencils (stencil_at) of four particles at (x, y) with
+// half-widths (lx, ly), lane k particle k's, into s[0 .. 3], written in
+// place: through a Stencil1D and set_stencil the binning took 14 % longer.
+inline void gimp_stencils_x4(const GridView& g, const Lanes& x, const Lanes& y, const Lanes& lx,
+                             const Lanes& ly, Stencil2D s[4]) {
+  stencil_1d_x4(x, g.ox, g.h, lx, StencilStart::CellLeft,
+                [&](int k, int first, double r0, const Lanes& wl, const Lanes& dwl) {
+                  s[k].w.first_x = first;
+                  store_lanes(s[k].w.wx, wl);
+                  store_lanes(s[k].d.dwx, dwl);
+                  s[k].r.r0x = r0;
+                  s[k].r.lx = lane(lx, k);
                 });
-  stencil_1d_x4(load_lanes(P.y + p), g.oy, g.h, ly, StencilStart::Nearest,
-                [&](int k, int cell, int first, double r0, const Lanes& wl, const Lanes& dwl) {
-                  w[k].first_y = first;
-                  for (int b = 0; b < 3; ++b) {
-                    w[k].wy[b] = lane(wl, b);
-                    d[k].dwy[b] = lane(dwl, b);
-                  }
-                  r[k].cell_y = cell;
-                  r[k].r0y = r0;
-                  r[k].ly = lane(ly, k);
+  stencil_1d_x4(y, g.oy, g.h, ly, StencilStart::Nearest,
+                [&](int k, int first, double r0, const Lanes& wl, const Lanes& dwl) {
+                  s[k].w.first_y = first;
+                  store_lanes(s[k].w.wy, wl);
+                  store_lanes(s[k].d.dwy, dwl);
+                  s[k].r.r0y = r0;
+                  s[k].r.ly = lane(ly, k);
                 });
 }
 
