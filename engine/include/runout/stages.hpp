@@ -200,7 +200,7 @@ RUNOUT_HD inline void set_stencil(const Stencil1D& x, const Stencil1D& y, double
 // Burghardt 2011, tracks the parallelogram itself). Each half-width is
 // capped at h / 2, the widest domain a three-node stencil holds, as CPDI
 // codes limit domain size (Homel, Brannon and Guilkey 2016); the floor
-// keeps gimp_1d finite.
+// keeps the weights' 1 / (h lp) finite.
 RUNOUT_HD inline void reduce_lattice_basis(double& ax, double& ay, double& bx, double& by) {
   // Each pass at least halves the longer vector's excess, so a few dozen
   // passes reach any finite shear; the bound keeps the loop finite on NaN.
@@ -322,21 +322,24 @@ inline void domain_half_widths_4(const ParticleView& P, int p, const StepConfig&
 // place: through a Stencil1D and set_stencil the binning took 14 % longer.
 inline void gimp_stencils_x4(const GridView& g, const Lanes& x, const Lanes& y, const Lanes& lx,
                              const Lanes& ly, Stencil2D s[4]) {
+  // One direction's part of one particle's stencil.
+  const auto set = [](int& first, double* w, double* dw, double& r0, double& l, int first_node,
+                      double offset, const Lanes& wl, const Lanes& dwl, double half_width) {
+    first = first_node;
+    store_lanes(w, wl);
+    store_lanes(dw, dwl);
+    r0 = offset;
+    l = half_width;
+  };
   stencil_1d_x4(x, g.ox, g.h, lx, StencilStart::CellLeft,
                 [&](int k, int first, double r0, const Lanes& wl, const Lanes& dwl) {
-                  s[k].w.first_x = first;
-                  store_lanes(s[k].w.wx, wl);
-                  store_lanes(s[k].d.dwx, dwl);
-                  s[k].r.r0x = r0;
-                  s[k].r.lx = lane(lx, k);
+                  Stencil2D& t = s[k];
+                  set(t.w.first_x, t.w.wx, t.d.dwx, t.r.r0x, t.r.lx, first, r0, wl, dwl, lane(lx, k));
                 });
   stencil_1d_x4(y, g.oy, g.h, ly, StencilStart::Nearest,
                 [&](int k, int first, double r0, const Lanes& wl, const Lanes& dwl) {
-                  s[k].w.first_y = first;
-                  store_lanes(s[k].w.wy, wl);
-                  store_lanes(s[k].d.dwy, dwl);
-                  s[k].r.r0y = r0;
-                  s[k].r.ly = lane(ly, k);
+                  Stencil2D& t = s[k];
+                  set(t.w.first_y, t.w.wy, t.d.dwy, t.r.r0y, t.r.ly, first, r0, wl, dwl, lane(ly, k));
                 });
 }
 
