@@ -95,13 +95,13 @@ class OpenMpBackend : public HostBackend {
   }
 
   template <class Stage>
-  [[gnu::flatten]] void scatter(const GridView&, const StepConfig&, Stage stage) {
+  [[gnu::flatten]] void scatter(const GridView& g, const StepConfig& c, Stage stage) {
     const PlainAdd add;
     const auto lower = [](double* a, int n, double v) { a[n] = std::min(a[n], v); };
     for (int colour = 0; colour < 2; ++colour) {
 #pragma omp parallel for schedule(dynamic, 1) firstprivate(stage) if (order_.size() > kParallelMin)
       for (int strip = colour; strip < strips_; strip += 2)
-        for_each_four(group_start(strip, 0), group_start(strip, blocks_y_),
+        for_each_four(g, c, group_start(strip, 0), group_start(strip, blocks_y_),
                       [&](const int* p, const Stencil2D* st, int count) {
                         for (int k = 0; k < count; ++k) stage(p[k], st[k], add, lower);
                       });
@@ -163,8 +163,8 @@ class OpenMpBackend : public HostBackend {
       for (int q = first_; q < last_; ++q) stage(b_.order_[q]);
     }
     template <class Stage>
-    void for_each_particle_stencil(const GridView&, const StepConfig&, Stage stage) const {
-      b_.for_each_four(first_, last_, [&](const int* p, const Stencil2D* st, int count) {
+    void for_each_particle_stencil(const GridView& g, const StepConfig& c, Stage stage) const {
+      b_.for_each_four(g, c, first_, last_, [&](const int* p, const Stencil2D* st, int count) {
         for (int k = 0; k < count; ++k) stage(p[k], st[k]);
       });
     }
@@ -185,12 +185,7 @@ class OpenMpBackend : public HostBackend {
           s[0] = stage(p);
           count = 1;
         }
-        for (int k = 0; k < count; ++k) {
-          if (s[k] >= 0.0 && std::isfinite(s[k]))
-            out.max = std::max(out.max, s[k]);
-          else
-            ++out.bad;
-        }
+        for (int k = 0; k < count; ++k) out.take(s[k]);
         q += count;
       }
       return out;
@@ -227,34 +222,34 @@ class OpenMpBackend : public HostBackend {
  private:
   // The stencils of particles p[0 .. 3], four at a time (GIMP), from their
   // positions and the half-widths the binning stored: made again in each
-  // pass that needs them, at about 40 instructions a particle, where
-  // storing the 160 bytes of each and reading them back in three passes
-  // made the step wait on memory (docs/engine.md, "The step"). Out of line,
-  // so that its arithmetic is compiled once: a particle has the same
-  // stencil in every pass, whichever three it is made with.
-  [[gnu::noinline, gnu::flatten]] void make_stencils(const int p[4], Stencil2D st[4]) const {
+  // pass that needs them, where storing the 160 bytes of each and reading
+  // them back in three passes made the step wait on memory (docs/engine.md,
+  // "Shape functions"). Out of line, so that its arithmetic is compiled
+  // once: a particle has the same stencil in every pass, whichever three it
+  // is made with.
+  [[gnu::noinline, gnu::flatten]] void make_stencils(const GridView& g, const StepConfig& c,
+                                                    const int p[4], Stencil2D st[4]) const {
     const double *x = particles_.x.data(), *y = particles_.y.data();
-    if (config_.shape == ShapeKind::Gimp) {
-      gimp_stencils_x4(grid_view_, gather_lanes(x, p), gather_lanes(y, p),
-                       gather_lanes(lx_.data(), p), gather_lanes(ly_.data(), p), st);
+    if (c.shape == ShapeKind::Gimp) {
+      gimp_stencils_x4(g, gather_lanes(x, p), gather_lanes(y, p), gather_lanes(lx_.data(), p),
+                       gather_lanes(ly_.data(), p), st);
       return;
     }
-    for (int k = 0; k < 4; ++k)
-      stencil_at(grid_view_, config_, x[p[k]], y[p[k]], lx_[p[k]], ly_[p[k]], st[k]);
+    for (int k = 0; k < 4; ++k) stencil_at(g, c, x[p[k]], y[p[k]], lx_[p[k]], ly_[p[k]], st[k]);
   }
 
   // f(p, st, count) for the particles order_[first .. last), four at a
   // time: p[0 .. count - 1] the particles, st their stencils (p[count .. 3]
   // copies of the last).
   template <class F>
-  void for_each_four(int first, int last, F&& f) const {
+  void for_each_four(const GridView& g, const StepConfig& c, int first, int last, F&& f) const {
     for (int q = first; q < last; q += 4) {
       const int count = std::min(4, last - q);
       const int end = order_[q + count - 1];
       const int p[4] = {order_[q], count > 1 ? order_[q + 1] : end, count > 2 ? order_[q + 2] : end,
                         end};
       Stencil2D st[4];
-      make_stencils(p, st);
+      make_stencils(g, c, p, st);
       f(p, st, count);
     }
   }
@@ -273,9 +268,9 @@ class OpenMpBackend : public HostBackend {
     const GridView g = grid;
     const StepConfig c = config;
     const int cells_x = cells_x_ = g.nx - 1, cells_y = cells_y_ = g.ny - 1;
-    blocks_x_ = (cells_x + kBlock - 1) / kBlock;
+    const int blocks_x = (cells_x + kBlock - 1) / kBlock;
     const int by = blocks_y_ = (cells_y + kBlock - 1) / kBlock;
-    strips_ = (blocks_x_ + kStrip - 1) / kStrip;
+    strips_ = (blocks_x + kStrip - 1) / kStrip;
     const int blocks = strips_ * blocks_y_ * kStrip;
     double *const lx = lx_.data(), *const ly = ly_.data();
     int *const block = particle_block_.data(), *const cell = particle_cell_.data();
@@ -303,8 +298,6 @@ class OpenMpBackend : public HostBackend {
       domain_half_widths(P, p, c, g.h, lx[p], ly[p]);
       place(p);
     }
-    grid_view_ = g;
-    config_ = c;
     sort_by_block(blocks);
   }
 
@@ -352,14 +345,11 @@ class OpenMpBackend : public HostBackend {
     }
   }
 
-  // The half-widths of the particles' domains at the start of the step,
-  // and the grid and configuration of its stencils.
+  // The half-widths of the particles' domains at the start of the step.
   StaggeredArray lx_, ly_;
-  GridView grid_view_{};
-  StepConfig config_{};
   // Particles grouped by block of kBlock x kBlock cells (counting sort).
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, next_;
-  int blocks_x_ = 0, blocks_y_ = 0, strips_ = 0, cells_x_ = 0, cells_y_ = 0;
+  int blocks_y_ = 0, strips_ = 0, cells_x_ = 0, cells_y_ = 0;
 };
 
 }  // namespace runout

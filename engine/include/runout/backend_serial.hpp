@@ -97,11 +97,7 @@ class SerialDeviceBackend : public HostBackend {
   SpeedMax max_speed(Stage stage) {
     SpeedMax out;
     for (int p = 0; p < particles_.size(); ++p) {
-      const double s = stage(p);
-      if (s >= 0.0 && std::isfinite(s))
-        out.max = std::max(out.max, s);
-      else
-        ++out.bad;
+      out.take(stage(p));
     }
     return out;
   }

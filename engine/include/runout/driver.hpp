@@ -11,14 +11,15 @@
 //   scatter(g, c, stage)               stage(p, stencil, add, lower) per particle
 //   for_each(count, stage)             stage(i) per node or node row
 //   for_each_particle(stage)           stage(p)
-//   for_each_particle_stencil(g, c, stage)  stage(p, stencil)
+//   for_each_particle_stencil(g, c, stage)  stage(p, stencil)      (*)
 //   max_speed(stage)                   max of stage(p), and how many were < 0
-//                                      (the CPU's four at a time, stage.four)
+//                                      (the CPU's four at a time, stage.four) (*)
 //   sum(a, count)                      a sum over nodes
 //   fill(a, count, v)
-//   cell_means(g, value)               per-cell volume-weighted means of value(p)
+//   cell_means(g, value)               per-cell volume-weighted means of value(p) (*)
 //   for_cell_groups(g, c, f)           f(cells) for groups of whole cells, each
-//                                      with the loops above over its particles;
+//                                      with the loops marked (*) and
+//                                      for_each_particle over its particles;
 //                                      the sum of the SpeedMax they return
 //   gradients(), scratch(), xi_start(), nonlocal_average(...)
 //   materials(), kernel_config(c), host_particles()

@@ -2,6 +2,8 @@
 // What the driver (driver.hpp) and its backends hand each other: views of
 // per-particle arrays and the results of reductions, in the backend's
 // memory (host or device).
+#include <cmath>
+
 #include "runout/host_device.hpp"
 #include "runout/stages.hpp"
 
@@ -25,6 +27,12 @@ struct CellMeanView {  // the mean of the cell particle p is in (mean null: none
 struct SpeedMax {
   double max = 0;  // the largest signal speed
   int bad = 0;     // particles at fault (a negative or non-finite speed)
+  void take(double speed) {  // the host backends
+    if (speed >= 0.0 && std::isfinite(speed))
+      max = max < speed ? speed : max;
+    else
+      ++bad;
+  }
 };
 struct ParticleBox {
   double xmin, xmax, ymin, ymax;
