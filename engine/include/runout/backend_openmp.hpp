@@ -98,13 +98,19 @@ class OpenMpBackend : public HostBackend {
   [[gnu::flatten]] void scatter(const GridView& g, const StepConfig& c, Stage stage) {
     const PlainAdd add;
     const auto lower = [](double* a, int n, double v) { a[n] = std::min(a[n], v); };
+    const bool derivatives = stage.derivatives();
     for (int colour = 0; colour < 2; ++colour) {
 #pragma omp parallel for schedule(dynamic, 1) firstprivate(stage) if (order_.size() > kParallelMin)
-      for (int strip = colour; strip < strips_; strip += 2)
-        for_each_four(g, c, group_start(strip, 0), group_start(strip, blocks_y_),
-                      [&](const int* p, const Stencil2D* st, int count) {
-                        for (int k = 0; k < count; ++k) stage(p[k], st[k], add, lower);
-                      });
+      for (int strip = colour; strip < strips_; strip += 2) {
+        const int first = group_start(strip, 0), last = group_start(strip, blocks_y_);
+        const auto each = [&](const int* p, const Stencil2D* st, int count) {
+          for (int k = 0; k < count; ++k) stage(p[k], st[k], add, lower);
+        };
+        if (derivatives)
+          for_each_four<true>(g, c, first, last, each);
+        else
+          for_each_four<false>(g, c, first, last, each);
+      }
     }
   }
 
@@ -227,12 +233,16 @@ class OpenMpBackend : public HostBackend {
   // "Shape functions"). Out of line, so that its arithmetic is compiled
   // once: a particle has the same stencil in every pass, whichever three it
   // is made with.
+  // kDerivatives false: GIMP stencils without their derivatives, for the
+  // passes that do not read them (the stage's derivatives()); the weights
+  // are the same operations, so the same bits (tested).
+  template <bool kDerivatives>
   [[gnu::noinline, gnu::flatten]] void make_stencils(const GridView& g, const StepConfig& c,
                                                     const int p[4], Stencil2D st[4]) const {
     const double *x = particles_.x.data(), *y = particles_.y.data();
     if (c.shape == ShapeKind::Gimp) {
-      gimp_stencils_x4(g, gather_lanes(x, p), gather_lanes(y, p), gather_lanes(lx_.data(), p),
-                       gather_lanes(ly_.data(), p), st);
+      gimp_stencils_x4<kDerivatives>(g, gather_lanes(x, p), gather_lanes(y, p),
+                                     gather_lanes(lx_.data(), p), gather_lanes(ly_.data(), p), st);
       return;
     }
     for (int k = 0; k < 4; ++k) stencil_at(g, c, x[p[k]], y[p[k]], lx_[p[k]], ly_[p[k]], st[k]);
@@ -241,7 +251,7 @@ class OpenMpBackend : public HostBackend {
   // f(p, st, count) for the particles order_[first .. last), four at a
   // time: p[0 .. count - 1] the particles, st their stencils (p[count .. 3]
   // copies of the last).
-  template <class F>
+  template <bool kDerivatives = true, class F>
   void for_each_four(const GridView& g, const StepConfig& c, int first, int last, F&& f) const {
     for (int q = first; q < last; q += 4) {
       const int count = std::min(4, last - q);
@@ -249,7 +259,7 @@ class OpenMpBackend : public HostBackend {
       const int p[4] = {order_[q], count > 1 ? order_[q + 1] : end, count > 2 ? order_[q + 2] : end,
                         end};
       Stencil2D st[4];
-      make_stencils(g, c, p, st);
+      make_stencils<kDerivatives>(g, c, p, st);
       f(p, st, count);
     }
   }

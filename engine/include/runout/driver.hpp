@@ -84,6 +84,9 @@ struct P2g {
   RUNOUT_HD void operator()(int p, const St& st, Add add, Lower lower) const {
     p2g(P, p, st, g, c, add, lower);
   }
+  // Whether the stage reads the stencil's derivatives (st.d): a backend
+  // that makes stencils in each pass may leave them out where not.
+  RUNOUT_HD bool derivatives() const { return true; }
 };
 struct GridUpdate {
   GridView g;
@@ -108,6 +111,7 @@ struct P2gSmoothed {
   RUNOUT_HD void operator()(int p, const St& st, Add add, Lower) const {
     p2g_smoothed(P, p, st, g, add);
   }
+  RUNOUT_HD bool derivatives() const { return false; }
 };
 struct XpicTerm {
   GridView g;
@@ -126,6 +130,8 @@ struct G2pMomentum {
     g2p(P, p, st, g, c);
     p2g_momentum(P, p, st, g, c, add);
   }
+  // APIC's g2p takes the cell gradient where its D is degenerate.
+  RUNOUT_HD bool derivatives() const { return c.transfer == TransferKind::Apic; }
 };
 struct Remap {
   GridView g;
@@ -178,7 +184,8 @@ struct Stress {
     }
     store_lanes(speeds, stress_update_x4(P, p, xx, load_lanes(L.xy + p), load_lanes(L.yx + p), yy,
                                          mats[m], dt, s));
-    for (int k = 0; k < 4; ++k) speeds[k] = checked(p + k, speeds[k]);
+    if (c.period > 0.0 || !no_fault_x4(P, p, limits))
+      for (int k = 0; k < 4; ++k) speeds[k] = checked(p + k, speeds[k]);
     return true;
   }
   // After the update: the move across a periodic seam, and the guards.
@@ -413,9 +420,12 @@ void Driver<Backend>::step(double dt) {
   backend_.for_each(nodes, stage::GridUpdate{g, c, dt});
   exchange(Exchange::AfterGridUpdate);
   const double basal = c.base.kind != BaseKind::None ? backend_.sum(g.fbase, nodes) : 0.0;
-  if (c.xpic_now) xpic_start_velocity(c);
-  backend_.fill(g.px, nodes, 0.0);
-  backend_.fill(g.py, nodes, 0.0);
+  // grid_update leaves px, py zero; XPIC's round trips use them again.
+  if (c.xpic_now) {
+    xpic_start_velocity(c);
+    backend_.fill(g.px, nodes, 0.0);
+    backend_.fill(g.py, nodes, 0.0);
+  }
   backend_.scatter(g, c, stage::G2pMomentum{P, g, c});
   exchange(Exchange::AfterMomentum);
   backend_.for_each(nodes, stage::Remap{g, c, dt});

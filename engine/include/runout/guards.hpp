@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "runout/host_device.hpp"
+#include "runout/lanes.hpp"
 #include "runout/material.hpp"
 #include "runout/particles.hpp"
 #include "runout/scene.hpp"
@@ -63,6 +64,30 @@ RUNOUT_HD inline Fault particle_fault(const ParticleView& P, int p, const GuardL
   const double j = P.vol[p] / P.vol0[p];
   if (!(j >= g.min_j && j <= g.max_j)) return Fault::Volume;
   return Fault::None;
+}
+
+// Whether particles p .. p + 3 all pass particle_fault, four at a time
+// (the CPU's stress update, stress_update_x4): false where one does not,
+// and particle_fault then says which and why. v - v is zero for a finite
+// v and NaN for an infinite or NaN one, so the sum of those differences is
+// zero only where every value is finite.
+inline bool no_fault_x4(const ParticleView& P, int p, const GuardLimits& g) {
+  const auto at = [p](const double* a) { return load_lanes(a + p); };
+  Lanes not_finite = splat(0.0);
+  for (const double* a : {P.x, P.y, P.vx, P.vy, P.vol, P.sxx, P.syy, P.sxy, P.szz, P.xi, P.su,
+                          P.gamma_dot}) {
+    const Lanes v = at(a);
+    not_finite = not_finite + (v - v);
+  }
+  const Lanes x = at(P.x), y = at(P.y), vx = at(P.vx), vy = at(P.vy);
+  const Lanes speed2 = vx * vx + vy * vy, j = at(P.vol) / at(P.vol0);
+  const double max2 = g.max_speed * g.max_speed;
+  bool ok = true;
+  for (int k = 0; k < 4; ++k)
+    ok = ok && lane(not_finite, k) == 0.0 && lane(x, k) >= g.xmin && lane(x, k) <= g.xmax &&
+         lane(y, k) >= g.ymin && lane(y, k) <= g.ymax && !(lane(speed2, k) > max2) &&
+         lane(j, k) >= g.min_j && lane(j, k) <= g.max_j;
+  return ok;
 }
 
 // The message of a failed step: how many particles are at fault, and one

@@ -88,7 +88,10 @@ RUNOUT_HD inline double select_less(double a, double b, double x, double y) { re
 RUNOUT_HD inline double splat_like(const double&, double v) { return v; }
 RUNOUT_HD inline Lanes splat_like(const Lanes&, double v) { return splat(v); }
 
-template <class T>
+// kDerivatives false: the weights alone (dw is not written), for the
+// passes that interpolate or scatter without gradients; the weights are
+// the same operations either way.
+template <bool kDerivatives = true, class T>
 RUNOUT_HD inline void gimp_cell_nodes(const T& f, const GimpScaleOf<T>& k, T w[4], T dw[4]) {
   const T zero = splat_like(f, 0.0);
   const T hf = k.h * f, hg = k.h + -hf;  // distances to the cell's nodes c and c + 1
@@ -97,9 +100,11 @@ RUNOUT_HD inline void gimp_cell_nodes(const T& f, const GimpScaleOf<T>& k, T w[4
   const T b0 = k.lp + -hf, b3 = k.lp + -hg;
   const T c0 = select_less(b0, zero, zero, b0), c3 = select_less(b3, zero, zero, b3);
   w[0] = c0 * c0 * quarter;
-  dw[0] = -(c0 * half);
   w[3] = c3 * c3 * quarter;
-  dw[3] = c3 * half;
+  if (kDerivatives) {
+    dw[0] = -(c0 * half);
+    dw[3] = c3 * half;
+  }
   // The inner nodes at distance a, on the side s (+1: the node behind the
   // particle, -1: ahead of it).
   const T lp = k.lp, linear_end = k.h + -k.lp, reach = k.h + k.lp;
@@ -108,6 +113,7 @@ RUNOUT_HD inline void gimp_cell_nodes(const T& f, const GimpScaleOf<T>& k, T w[4
     const T w_inner = 1.0 - (a * a + lp * lp) * half, w_linear = 1.0 - a * k.inv_h;
     const T w_outer = b * b * quarter;
     wi = select_less(a, lp, w_inner, select_less(a, linear_end, w_linear, w_outer));
+    if (!kDerivatives) return;
     const T dw_inner = -s * a * k.inv_hlp, dw_linear = -s * k.inv_h;
     const T dw_outer = -s * b * half;
     dwi = select_less(a, lp, dw_inner, select_less(a, linear_end, dw_linear, dw_outer));
@@ -157,34 +163,31 @@ RUNOUT_HD inline void stencil_1d(ShapeKind kind, double xp, double origin, doubl
   }
 }
 
-// stencil_1d (GIMP) of four particles at once: lane k of xp and lp is
-// particle k's, whose stencil goes to out(k, first, r0, w, dw) (w and
-// dw that particle's four nodes, as Lanes). The same operations, so the
-// same weights to rounding (the compiler may fuse other pairs of them into
-// multiply-adds).
-template <class Out>
-inline void stencil_1d_x4(const Lanes& xp, double origin, double h, const Lanes& lp,
+// The rest of stencil_1d (GIMP) for four particles at once, lane k of xp
+// particle k's: from the cell and the fraction of it, and the weights w
+// and derivatives dw of the nodes cell - 1 .. cell + 2 (gimp_cell_nodes),
+// where the stencil starts and its node offsets; each particle's stencil goes to
+// out(k, first, r0, w, dw) (w and dw that particle's four nodes, as
+// Lanes). The same operations as stencil_1d, so the same weights to
+// rounding (the compiler may fuse other pairs of them into multiply-adds).
+// kDerivatives false: dw is neither read nor passed on (zero).
+template <bool kDerivatives = true, class Out>
+inline void stencil_1d_x4(const Lanes& xp, double origin, double h, const Lanes& cell,
+                          const Lanes& frac, Lanes w[kStencilNodes], Lanes dw[kStencilNodes],
                           StencilStart start, Out&& out) {
-  const Lanes u = grid_coordinate(xp, origin, h);
-  const Lanes cell = floor_lanes(u);
-  const Lanes frac = u - cell;
-  // 1 / h once, not in every lane (gimp_scale)
-  const GimpScaleOf<Lanes> k{splat(h), lp, splat(1.0 / h), 1.0 / (h * lp)};
-  Lanes w[kStencilNodes], dw[kStencilNodes];
-  gimp_cell_nodes(frac, k, w, dw);
   Lanes first = cell - 1.0;
   if (start == StencilStart::Nearest) {
     const Lanes half = splat(0.5);
     first = first + select_less(frac, half, splat(0.0), splat(1.0));
     for (int j = 0; j < 3; ++j) {
       w[j] = select_less(frac, half, w[j], w[j + 1]);
-      dw[j] = select_less(frac, half, dw[j], dw[j + 1]);
+      if (kDerivatives) dw[j] = select_less(frac, half, dw[j], dw[j + 1]);
     }
     w[3] = dw[3] = splat(0.0);
   }
   const Lanes r0 = origin + first * h - xp;
   transpose_lanes(w);
-  transpose_lanes(dw);
+  if (kDerivatives) transpose_lanes(dw);
   for (int q = 0; q < 4; ++q)
     out(q, static_cast<int>(lane(first, q)), lane(r0, q), w[q], dw[q]);
 }

@@ -319,28 +319,43 @@ inline void domain_half_widths_4(const ParticleView& P, int p, const StepConfig&
 
 // The GIMP stencils (stencil_at) of four particles at (x, y) with
 // half-widths (lx, ly), lane k particle k's, into s[0 .. 3], written in
-// place, without the copies of a Stencil1D and set_stencil.
+// place, without the copies of a Stencil1D and set_stencil. kDerivatives
+// false: the derivatives (s[k].d) are left unset, for the passes that do
+// not read them.
+template <bool kDerivatives = true>
 inline void gimp_stencils_x4(const GridView& g, const Lanes& x, const Lanes& y, const Lanes& lx,
                              const Lanes& ly, Stencil2D s[4]) {
+  const Lanes ux = grid_coordinate(x, g.ox, g.h), uy = grid_coordinate(y, g.oy, g.h);
+  const Lanes cx = floor_lanes(ux), cy = floor_lanes(uy);
+  const Lanes fx = ux - cx, fy = uy - cy;
+  // 1 / h once, not in every lane (gimp_scale)
+  const Lanes inv_h = splat(1.0 / g.h);
+  Lanes wx[kStencilNodes], dwx[kStencilNodes] = {}, wy[kStencilNodes], dwy[kStencilNodes] = {};
+  gimp_cell_nodes<kDerivatives>(fx, GimpScaleOf<Lanes>{splat(g.h), lx, inv_h, 1.0 / (g.h * lx)},
+                                wx, dwx);
+  gimp_cell_nodes<kDerivatives>(fy, GimpScaleOf<Lanes>{splat(g.h), ly, inv_h, 1.0 / (g.h * ly)},
+                                wy, dwy);
   // One direction's part of one particle's stencil.
   const auto set = [](int& first, double* w, double* dw, double& r0, double& l, int first_node,
                       double offset, const Lanes& wl, const Lanes& dwl, double half_width) {
     first = first_node;
     store_lanes(w, wl);
-    store_lanes(dw, dwl);
+    if (kDerivatives) store_lanes(dw, dwl);
     r0 = offset;
     l = half_width;
   };
-  stencil_1d_x4(x, g.ox, g.h, lx, StencilStart::CellLeft,
-                [&](int k, int first, double r0, const Lanes& wl, const Lanes& dwl) {
-                  Stencil2D& t = s[k];
-                  set(t.w.first_x, t.w.wx, t.d.dwx, t.r.r0x, t.r.lx, first, r0, wl, dwl, lane(lx, k));
-                });
-  stencil_1d_x4(y, g.oy, g.h, ly, StencilStart::Nearest,
-                [&](int k, int first, double r0, const Lanes& wl, const Lanes& dwl) {
-                  Stencil2D& t = s[k];
-                  set(t.w.first_y, t.w.wy, t.d.dwy, t.r.r0y, t.r.ly, first, r0, wl, dwl, lane(ly, k));
-                });
+  stencil_1d_x4<kDerivatives>(x, g.ox, g.h, cx, fx, wx, dwx, StencilStart::CellLeft,
+                              [&](int q, int first, double r0, const Lanes& wl, const Lanes& dwl) {
+                                Stencil2D& t = s[q];
+                                set(t.w.first_x, t.w.wx, t.d.dwx, t.r.r0x, t.r.lx, first, r0, wl,
+                                    dwl, lane(lx, q));
+                              });
+  stencil_1d_x4<kDerivatives>(y, g.oy, g.h, cy, fy, wy, dwy, StencilStart::Nearest,
+                              [&](int q, int first, double r0, const Lanes& wl, const Lanes& dwl) {
+                                Stencil2D& t = s[q];
+                                set(t.w.first_y, t.w.wy, t.d.dwy, t.r.r0y, t.r.ly, first, r0, wl,
+                                    dwl, lane(ly, q));
+                              });
 }
 
 // Visits the 4 x 3 nodes of a stencil (one of each row's four has zero
@@ -594,17 +609,22 @@ RUNOUT_HD inline void light_node_velocity(const GridView& g, const StepConfig& c
   constrain(g, c, n, vx, vy);
 }
 
+// The node's momentum is spent here: px, py are left zero for the scatter
+// of the remapped momentum (stage 4), where a separate pass over the grid
+// cleared them.
 RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c, double dt) {
   const double m = g.m[n];
   if (m <= c.min_node_mass) {
     double vx, vy;
     light_node_velocity(g, c, n, vx, vy);
+    g.px[n] = g.py[n] = 0.0;
     g.v0x[n] = g.vx[n] = vx;
     g.v0y[n] = g.vy[n] = vy;
     g.fbase[n] = g.stuck[n] = 0.0;
     return;
   }
   double v0x = g.px[n] / m, v0y = g.py[n] / m;
+  g.px[n] = g.py[n] = 0.0;
   // Gravity as m_i g: the same force as the particles' sum N m_p g (their
   // weights sum their masses into m_i), formed once per node rather than
   // at each of every particle's nine.
@@ -981,15 +1001,32 @@ inline Lanes stress_update_x4(const ParticleView& P, int p, const Lanes& xx, con
   stress_step(u, xx, xy, yx, yy, mat, dt);
   const bool tresca = mat.model == MaterialModel::Tresca;
   Lanes a = splat(1.0), b = splat(0.0), S = splat(1.0);
+  // Tresca's yield check (tresca_return's first lines) four at a time:
+  // where all four trials lie within the strength, nearly every particle of
+  // a slide at nearly every step, they are the new stress as they are.
+  bool elastic = !tresca;
   if (tresca) {
     rate_scaling_x4(mat.strength, u.gamma_dot, a, b);
     S = softening_x4(mat.strength, at(P.xi));
+    const Lanes radius_x = 0.5 * (u.sxx - u.syy);
+    const Lanes tau_trial = square_root(radius_x * radius_x + u.sxy * u.sxy);
+    const Lanes su_trial = mat.strength.su0 * (a * S + b);  // strength_at
+    elastic = true;
+    for (int k = 0; k < 4; ++k) elastic = elastic && lane(tau_trial, k) <= lane(su_trial, k);
+    if (elastic) store_lanes(P.su + p, su_trial);
   }
-  for (int k = 0; k < 4; ++k) {
-    StressPoint sp{lane(u.sxx, k), lane(u.syy, k), lane(u.sxy, k), lane(u.szz, k),
-                   P.xi[p + k], P.su[p + k]};
-    if (tresca) tresca_return(mat, RateScaling{lane(a, k), lane(b, k)}, lane(S, k), sp);
-    store_stress_point(P, p + k, sp);
+  if (elastic) {
+    store_lanes(P.sxx + p, u.sxx);
+    store_lanes(P.syy + p, u.syy);
+    store_lanes(P.sxy + p, u.sxy);
+    store_lanes(P.szz + p, u.szz);
+  } else {
+    for (int k = 0; k < 4; ++k) {
+      StressPoint sp{lane(u.sxx, k), lane(u.syy, k), lane(u.sxy, k), lane(u.szz, k),
+                     P.xi[p + k], P.su[p + k]};
+      tresca_return(mat, RateScaling{lane(a, k), lane(b, k)}, lane(S, k), sp);
+      store_stress_point(P, p + k, sp);
+    }
   }
   store_lanes(P.vol + p, u.vol);
   store_lanes(P.fxx + p, u.fxx);
