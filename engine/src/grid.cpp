@@ -33,8 +33,6 @@ const GridView& Grid::fit(const GridView& placed) {
   g.qy = qy_.data();
   g.xvx = xvx_.data();
   g.xvy = xvy_.data();
-  for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_}) std::fill_n(a->begin(), n, 0.0);
-  std::fill_n(gap_.begin(), n, std::numeric_limits<double>::infinity());
   return g;
 }
 

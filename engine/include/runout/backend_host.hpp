@@ -37,7 +37,7 @@ class HostBackend {
   ParticleView particles() { return particles_.view(); }
   const Grid& grid() const { return grid_; }
 
-  GridView fit_grid(const GridView& placed) { return grid_.fit(placed); }
+  GridView fit_grid(const GridView& placed) { return fit_grid_with(placed, *this); }
   // The base's force is summed in node order, so the same every run.
   double sum(const double* a, int count) const {
     double total = 0;
@@ -60,6 +60,14 @@ class HostBackend {
   const StepConfig& kernel_config(const StepConfig& c) const { return c; }
 
  protected:
+  // The grid fitted to placed and cleared with b.fill (the backend's).
+  template <class B>
+  GridView fit_grid_with(const GridView& placed, const B& b) {
+    const GridView& g = grid_.fit(placed);
+    clear_sums(g, [&b](double* a, int count, double v) { b.fill(a, count, v); });
+    return g;
+  }
+
   // Zeroes the per-cell sums of cell_means for the grid box g; returns the
   // number of cells.
   int clear_cells(const GridView& g) {

@@ -4,6 +4,8 @@
 // global node (0, 0) being the domain's min corner. Nodal fields are reset
 // every step, so moving the box costs nothing but a resize when it grows.
 #include <cmath>
+#include <initializer_list>
+#include <limits>
 #include <vector>
 
 #include "runout/host_device.hpp"
@@ -55,11 +57,20 @@ inline void place_box(GridView& g, double xmin, double xmax, double ymin, double
   g.oy = domain_y + g.j0 * h;
 }
 
+// Zeroes what p2g adds into (mass, volume, momentum, force) and sets the
+// gap to +infinity (no particle), with fill(array, count, value): the
+// backend's own, so that a multi-threaded one clears on all its threads.
+template <class Fill>
+void clear_sums(const GridView& g, Fill&& fill) {
+  const int n = g.size();
+  for (double* a : {g.m, g.vol, g.px, g.py, g.fx, g.fy}) fill(a, n, 0.0);
+  fill(g.gap, n, std::numeric_limits<double>::infinity());
+}
+
 class Grid {
  public:
-  // Takes the box of `placed` (place_box), zeroes mass, volume, momentum
-  // and force and sets the gap to +infinity (no particle). Storage only
-  // ever grows.
+  // Takes the box of `placed` (place_box); the caller clears what p2g
+  // adds into (clear_sums). Storage only ever grows.
   const GridView& fit(const GridView& placed);
   GridView view() { return view_; }
   const GridView& view() const { return view_; }
