@@ -44,10 +44,10 @@ class OpenMpBackend : public HostBackend {
   // Sixteen blocks (64 cells) wide: the step ran 1.02 to 1.09 times as
   // fast as with eight on two threads (bench_step, 1e5 and 1e6 particles;
   // longer runs along a node row), and 64 gave too few strips for two
-  // threads at 1e5. The price is fewer
-  // strips for many threads: a grid 1800 cells long has 28, 14 a colour.
-  // The width fixes the block order, so it depends on nothing but the grid:
-  // results stay the same whatever the number of threads.
+  // threads at 1e5. The price is fewer strips for many threads: a grid
+  // 1800 cells long has 28, 14 a colour. The width fixes the block order,
+  // so it depends on nothing but the grid: results stay the same whatever
+  // the number of threads.
   static constexpr int kStrip = 16;
   // Loops shorter than this run on one thread: a parallel region costs a
   // few microseconds, more than small scenes (and the tests) spend in the
@@ -195,10 +195,10 @@ class OpenMpBackend : public HostBackend {
 
   // The cells of kGroupRows block rows of one strip (each kStrip blocks
   // of kBlock x kBlock cells) and their particles, which lie together in
-  // the block order: a few thousand, so what the driver's stages pass from one of
-  // these loops to the next (gradients, displacements, cell means) is still
-  // in the cache when the next reads it, where loops over all particles
-  // had written it out to memory and read it back.
+  // the block order: a few thousand, so what the driver's stages pass from
+  // one of these loops to the next (gradients, displacements, cell means)
+  // is still in the cache when the next reads it, where loops over all
+  // particles had written it out to memory and read it back.
   class CellGroup {
    public:
     CellGroup(OpenMpBackend& b, int strip, int by0, int by1) : b_(b) {

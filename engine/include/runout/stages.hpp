@@ -610,8 +610,7 @@ RUNOUT_HD inline void light_node_velocity(const GridView& g, const StepConfig& c
 }
 
 // The node's momentum is spent here: px, py are left zero for the scatter
-// of the remapped momentum (stage 4), where a separate pass over the grid
-// cleared them.
+// of the remapped momentum (stage 4), which then needs no clearing pass.
 RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c, double dt) {
   const double m = g.m[n];
   if (m <= c.min_node_mass) {
