@@ -1,8 +1,5 @@
 #include "runout/grid.hpp"
 
-#include <algorithm>
-#include <limits>
-
 namespace runout {
 
 const GridView& Grid::fit(const GridView& placed) {

@@ -6,6 +6,7 @@
 
 #include "runout/host_device.hpp"
 #include "runout/kinds.hpp"
+#include "runout/lanes.hpp"
 #include "runout/strength.hpp"
 
 namespace runout {
@@ -100,12 +101,20 @@ RUNOUT_HD inline void elastic_update(const MaterialParams& m, const StrainIncrem
 // trial's xi (the iteration starts at dxi = 0 from it, so a yielding
 // particle evaluates no exp more than a particle that does not yield: xi +
 // 0 = xi, and the softening of -0 and +0 is one).
+// The radius of the in-plane Mohr circle, Tresca's tau. T: double, or
+// Lanes for four particles (the CPU's yield check, stress_update_x4).
+template <class T>
+RUNOUT_HD inline T mohr_radius(const T& sxx, const T& syy, const T& sxy) {
+  const T radius_x = 0.5 * (sxx - syy);
+  return square_root(radius_x * radius_x + sxy * sxy);
+}
+
 RUNOUT_HD inline void tresca_return(const MaterialParams& m, const RateScaling& k, double S,
                                     StressPoint& s) {
   const StrengthParams& p = m.strength;
   const double center = 0.5 * (s.sxx + s.syy);
   const double radius_x = 0.5 * (s.sxx - s.syy);
-  const double tau_trial = std::sqrt(radius_x * radius_x + s.sxy * s.sxy);
+  const double tau_trial = mohr_radius(s.sxx, s.syy, s.sxy);
   // S: from here the softening at xi + dxi.
   const double su_trial = strength_at(p, k, S);
   if (tau_trial <= su_trial) {

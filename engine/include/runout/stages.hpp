@@ -1007,9 +1007,8 @@ inline Lanes stress_update_x4(const ParticleView& P, int p, const Lanes& xx, con
   if (tresca) {
     rate_scaling_x4(mat.strength, u.gamma_dot, a, b);
     S = softening_x4(mat.strength, at(P.xi));
-    const Lanes radius_x = 0.5 * (u.sxx - u.syy);
-    const Lanes tau_trial = square_root(radius_x * radius_x + u.sxy * u.sxy);
-    const Lanes su_trial = mat.strength.su0 * (a * S + b);  // strength_at
+    const Lanes tau_trial = mohr_radius(u.sxx, u.syy, u.sxy);
+    const Lanes su_trial = strength_at(mat.strength, a, b, S);
     elastic = true;
     for (int k = 0; k < 4; ++k) elastic = elastic && lane(tau_trial, k) <= lane(su_trial, k);
     if (elastic) store_lanes(P.su + p, su_trial);

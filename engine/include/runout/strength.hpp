@@ -66,8 +66,14 @@ RUNOUT_HD inline RateScaling rate_scaling(const StrengthParams& p, double gamma_
 
 // su from a softening value S already at hand (the return mapping needs S
 // for its slope too).
+// T: double, or Lanes for four particles (the CPU's yield check,
+// stress_update_x4), with the rate scaling's a and b as values of T.
+template <class T>
+RUNOUT_HD inline T strength_at(const StrengthParams& p, const T& a, const T& b, const T& S) {
+  return p.su0 * (a * S + b);
+}
 RUNOUT_HD inline double strength_at(const StrengthParams& p, const RateScaling& k, double S) {
-  return p.su0 * (k.a * S + k.b);
+  return strength_at(p, k.a, k.b, S);
 }
 
 RUNOUT_HD inline double strength(const StrengthParams& p, const RateScaling& k, double xi) {
