@@ -37,7 +37,9 @@ class HostBackend {
   ParticleView particles() { return particles_.view(); }
   const Grid& grid() const { return grid_; }
 
-  GridView fit_grid(const GridView& placed) { return fit_grid_with(placed, *this); }
+  GridView fit_grid(const GridView& placed) {
+    return fit_grid_with(placed, [](const GridView& g) { clear_sums(g, 0, g.size()); });
+  }
   // The base's force is summed in node order, so the same every run.
   double sum(const double* a, int count) const {
     double total = 0;
@@ -60,11 +62,12 @@ class HostBackend {
   const StepConfig& kernel_config(const StepConfig& c) const { return c; }
 
  protected:
-  // The grid fitted to placed and cleared with b.fill (the backend's).
-  template <class B>
-  GridView fit_grid_with(const GridView& placed, const B& b) {
+  // The grid fitted to placed and cleared by clear(g) (clear_sums, as
+  // the backend runs it).
+  template <class Clear>
+  GridView fit_grid_with(const GridView& placed, Clear&& clear) {
     const GridView& g = grid_.fit(placed);
-    clear_sums(g, [&b](double* a, int count, double v) { b.fill(a, count, v); });
+    clear(g);
     return g;
   }
 

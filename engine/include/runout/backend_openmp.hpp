@@ -158,8 +158,17 @@ class OpenMpBackend : public HostBackend {
   }
 
   // On every thread: cleared on one, the grid box held the other thread
-  // back 1 to 3 % of a two-thread step at 1e5 particles.
-  GridView fit_grid(const GridView& placed) { return fit_grid_with(placed, *this); }
+  // back 1 to 3 % of a two-thread step at 1e5 particles. All its arrays in
+  // one parallel loop, not one loop an array: each loop's start wakes the
+  // other threads, which under the passive wait policy the CLI sets
+  // (openmp_wait.hpp) have gone to sleep.
+  GridView fit_grid(const GridView& placed) {
+    return fit_grid_with(placed, [](const GridView& g) {
+      const int n = g.size(), ranges = (n + kChunk - 1) / kChunk;
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+      for (int r = 0; r < ranges; ++r) clear_sums(g, r * kChunk, std::min(n, (r + 1) * kChunk));
+    });
+  }
   void fill(double* a, int count, double v) const {
 #pragma omp parallel for schedule(static) if (count > kParallelMin)
     for (int i = 0; i < count; ++i) a[i] = v;
@@ -357,56 +366,64 @@ class OpenMpBackend : public HostBackend {
     double *const lx = lx_.data(), *const ly = ly_.data();
     int *const block = particle_block_.data(), *const cell = particle_cell_.data();
     // The cell as the stencil finds it: its nodes must lie in the strip.
-    const auto place = [&](int p) {
+    const auto place = [=](int p) {
       const int ci = cell_of(P.x[p], g.ox, g.h), cj = cell_of(P.y[p], g.oy, g.h);
       const int bi = ci / kBlock;
       block[p] = ((bi / kStrip) * by + cj / kBlock) * kStrip + bi % kStrip;
       cell[p] = cj * cells_x + ci;
     };
-    // Four particles at a time (domain_half_widths_4): in groups fixed by
-    // the index, so the same whatever the number of threads.
-    const int groups = P.n / 4;
     const bool gimp = c.shape == ShapeKind::Gimp;
-#pragma omp parallel for schedule(dynamic, kChunk / 4) firstprivate(P, g, c) \
-    if (P.n > kParallelMin)
-    for (int q = 0; q < groups; ++q) {
-      if (gimp) domain_half_widths_4(P, 4 * q, c, g.h, lx + 4 * q, ly + 4 * q);
-      for (int p = 4 * q; p < 4 * q + 4; ++p) {
-        if (!gimp) domain_half_widths(P, p, c, g.h, lx[p], ly[p]);
+    // The particles [p0, p1): four at a time (domain_half_widths_4) from
+    // p0, a multiple of four, so in groups fixed by the index, the same
+    // whatever the number of threads.
+    const auto bin_range = [=](int p0, int p1) {
+      int p = p0;
+      for (; gimp && p + 4 <= p1; p += 4) {
+        domain_half_widths_4(P, p, c, g.h, lx + p, ly + p);
+        for (int k = p; k < p + 4; ++k) place(k);
+      }
+      for (; p < p1; ++p) {
+        domain_half_widths(P, p, c, g.h, lx[p], ly[p]);
         place(p);
       }
-    }
-    for (int p = 4 * groups; p < P.n; ++p) {
-      domain_half_widths(P, p, c, g.h, lx[p], ly[p]);
-      place(p);
-    }
-    sort_by_block(blocks);
+    };
+    sort_by_block(blocks, bin_range);
   }
 
   // Stable counting sort: within a block particles keep their index order,
-  // which fixes the order of the sums at every node. Each thread counts and
-  // places one contiguous range of the particles, the ranges in index
-  // order, so the order is the serial sort's whatever the number of
-  // threads; done on one, it kept the other waiting 6 % of a two-thread
-  // step (1e5 particles).
-  void sort_by_block(int blocks) {
+  // which fixes the order of the sums at every node. Each thread bins
+  // (bin(p0, p1): each particle's block), counts and places one contiguous
+  // range of the particles, the ranges in index order, so the order is the
+  // serial sort's whatever the number of threads; done on one, it kept the
+  // other waiting 6 % of a two-thread step (1e5 particles). Binning and
+  // sorting in one parallel region, rather than one each, saves waking the
+  // other threads once (passive wait policy, openmp_wait.hpp).
+  template <class Bin>
+  void sort_by_block(int blocks, Bin bin) {
     const int n = particles_.size();
     const int* const block = particle_block_.data();
     int* const order = order_.data();
     block_start_.assign(blocks + 1, 0);
-#pragma omp parallel if (n > kParallelMin)
+    int most = 1;
+#ifdef _OPENMP
+    most = omp_get_max_threads();
+#endif
+    next_.resize(static_cast<std::size_t>(most) * blocks);
+#pragma omp parallel firstprivate(bin) if (n > kParallelMin)
     {
       int t = 0, threads = 1;
 #ifdef _OPENMP
       t = omp_get_thread_num();
       threads = omp_get_num_threads();
 #endif
-#pragma omp single
-      next_.assign(static_cast<std::size_t>(threads) * blocks, 0);
       // next_: thread t's count in each block, then its next place there.
       int* const next = next_.data() + static_cast<std::size_t>(t) * blocks;
-      const int p0 = static_cast<int>(static_cast<long>(n) * t / threads);
-      const int p1 = static_cast<int>(static_cast<long>(n) * (t + 1) / threads);
+      std::fill_n(next, blocks, 0);
+      const auto start_of = [&](int u) {  // a multiple of four, for bin
+        return u == threads ? n : 4 * static_cast<int>(static_cast<long>(n / 4) * u / threads);
+      };
+      const int p0 = start_of(t), p1 = start_of(t + 1);
+      bin(p0, p1);
       for (int p = p0; p < p1; ++p) ++next[block[p]];
 #pragma omp barrier
 #pragma omp single

@@ -3,6 +3,7 @@
 // scene's domain. Node (i, j) of the box is global node (i0 + i, j0 + j),
 // global node (0, 0) being the domain's min corner. Nodal fields are reset
 // every step, so moving the box costs nothing but a resize when it grows.
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -58,13 +59,11 @@ inline void place_box(GridView& g, double xmin, double xmax, double ymin, double
 }
 
 // Zeroes what p2g adds into (mass, volume, momentum, force) and sets the
-// gap to +infinity (no particle), with fill(array, count, value): the
-// backend's own, so that a multi-threaded one clears on all its threads.
-template <class Fill>
-void clear_sums(const GridView& g, Fill&& fill) {
-  const int n = g.size();
-  for (double* a : {g.m, g.vol, g.px, g.py, g.fx, g.fy}) fill(a, n, 0.0);
-  fill(g.gap, n, std::numeric_limits<double>::infinity());
+// gap to +infinity (no particle), at the nodes [begin, end): a
+// multi-threaded backend clears its ranges on all its threads.
+inline void clear_sums(const GridView& g, int begin, int end) {
+  for (double* a : {g.m, g.vol, g.px, g.py, g.fx, g.fy}) std::fill(a + begin, a + end, 0.0);
+  std::fill(g.gap + begin, g.gap + end, std::numeric_limits<double>::infinity());
 }
 
 class Grid {
