@@ -331,7 +331,10 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
   opt.checkpoint_every = checkpoint_every;
   require_memory(s, s.method);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, &opt.out_dir), source);
-  if (default_threads) cli::use_default_threads(estimate_memory(s, s.method).items);
+  if (default_threads) {
+    cli::use_default_threads(estimate_memory(s, s.method).items);
+    if (backend == "cpu" && s.method == Method::Mpm) opt.adapt_threads = cli::adaptable_threads();
+  }
   return execute([&](const RunOptions& o) { return runner(s, o); }, opt, quiet,
                  s.method == Method::Dam);
 }
@@ -355,6 +358,7 @@ int resume(const std::string& dir, const std::string& backend, bool quiet,
   }
   RunOptions opt;
   opt.out_dir = dir;
+  if (default_threads && backend == "cpu") opt.adapt_threads = cli::adaptable_threads();
   return execute(resumer, opt, quiet, false);
 }
 
@@ -414,7 +418,7 @@ int main(int argc, char** argv) {
   add_scene_args(run_cmd, run_args);
   add_limit_args(run_cmd, run_limits);
   run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)");
-  run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores; OMP_NUM_THREADS if set)")
+  run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
   std::string backend = "cpu";
@@ -429,7 +433,7 @@ int main(int argc, char** argv) {
   CLI::App* resume_cmd = app.add_subcommand(
       "resume", "Continue a run from the checkpoint.bin in its output folder");
   resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")->required();
-  resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores; OMP_NUM_THREADS if set)")
+  resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
       ->check(CLI::PositiveNumber);
   resume_cmd->add_flag("-q,--quiet", quiet, "No progress output");
   resume_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")

@@ -18,4 +18,6 @@ void use_default_threads(double particles) {
   omp_set_num_threads(default_thread_count(particles, omp_get_max_threads()));
 }
 
+int adaptable_threads() { return std::getenv("OMP_NUM_THREADS") ? 0 : omp_get_max_threads(); }
+
 }  // namespace runout::cli

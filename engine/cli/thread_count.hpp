@@ -21,4 +21,9 @@ int default_thread_count(double particles, int cores);
 // unless OMP_NUM_THREADS is set: then OpenMP's own reading of it stands.
 void use_default_threads(double particles);
 
+// The most threads a CPU run may move between (RunOptions::adapt_threads,
+// thread_governor.hpp): OpenMP's count, or 0 where OMP_NUM_THREADS fixes
+// it.
+int adaptable_threads();
+
 }  // namespace runout::cli

@@ -10,6 +10,10 @@
 #include <string>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "runout/atomic_file.hpp"
 #include "runout/checkpoint.hpp"
 #include "runout/dam.hpp"
@@ -19,6 +23,7 @@
 #include "runout/run_control.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
+#include "runout/thread_governor.hpp"
 #include "runout/vtu_writer.hpp"
 
 namespace runout::run_detail {
@@ -269,6 +274,50 @@ inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
   }
 }
 
+// model's steps on the OpenMP thread count a ThreadGovernor picks from
+// their wall times (RunOptions::adapt_threads); the same steps on any count.
+// The count OpenMP had comes back at the end.
+template <class Model>
+class GovernedSteps {
+ public:
+  GovernedSteps(Model& model, int most) : model_(model), governor_(most) {}
+  GovernedSteps(const GovernedSteps&) = delete;
+  GovernedSteps& operator=(const GovernedSteps&) = delete;
+  ~GovernedSteps() { set_threads(most_); }
+
+  double time() const { return model_.time(); }
+  long steps() const { return model_.steps(); }
+  double stable_dt() const { return model_.stable_dt(); }
+  void step(double dt) {
+    timed([&] { model_.step(dt); });
+  }
+  void advance_to(double t) {
+    timed([&] { model_.advance_to(t); });
+  }
+
+ private:
+  static void set_threads([[maybe_unused]] int n) {
+#ifdef _OPENMP
+    omp_set_num_threads(n);
+#endif
+  }
+  template <class F>
+  void timed(F&& f) {
+    set_threads(governor_.threads());
+    const Clock::time_point t0 = Clock::now();
+    f();
+    governor_.took(seconds_since(t0));
+  }
+
+  Model& model_;
+  ThreadGovernor governor_;
+#ifdef _OPENMP
+  int most_ = omp_get_max_threads();
+#else
+  int most_ = 1;
+#endif
+};
+
 // A whole MPM run with any driver of the MPM step (the CPU Simulation, the
 // CUDA one): particles() gives the current particles on the host, which for
 // a device driver means a copy back, done for frames, history rows and
@@ -337,8 +386,15 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
     summary.checkpoint_path = checkpoint_path;
     summary.checkpoint_time = summary.resumed_from = sim.time();
   }
-  run_schedule(scene, options, start, sim, resumed ? resumed->row : 0, record, write_frame,
-               every, checkpoint, at_rest, summary);
+  const long first_row = resumed ? resumed->row : 0;
+  if (options.adapt_threads > 1) {
+    GovernedSteps<Driver> governed(sim, options.adapt_threads);
+    run_schedule(scene, options, start, governed, first_row, record, write_frame, every,
+                 checkpoint, at_rest, summary);
+  } else {
+    run_schedule(scene, options, start, sim, first_row, record, write_frame, every, checkpoint,
+                 at_rest, summary);
+  }
   return summary;
 }
 

@@ -27,6 +27,11 @@ struct RunOptions {
   // rounded to whole history rows; 0: none. MPM only; a resumed run keeps
   // the interval of its checkpoint.
   double checkpoint_every = 0;
+  // More than 1: an MPM run steps on this many OpenMP threads, or half,
+  // or a quarter, ... or one, whichever its steps' wall times say is the
+  // fastest now (thread_governor.hpp); the results are the same. 0: on
+  // OpenMP's count.
+  int adapt_threads = 0;
 };
 
 struct RunSummary {
