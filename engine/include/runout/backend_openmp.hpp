@@ -121,7 +121,7 @@ class OpenMpBackend : public HostBackend {
   // each colour's strips a loop of its own, the second loop waited at the
   // first's end for its slowest strip, and with two threads and five
   // strips of the first colour, one thread ran three of them while the
-  // other waited (the step ran 1.04 to 1.05 times as fast without that
+  // other waited (the step ran 1.02 to 1.05 times as fast without that
   // wait on two threads at 1e5 particles, bench_step). The order of the
   // additions at every node is the same as with the two loops.
   template <class Stage>
