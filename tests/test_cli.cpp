@@ -94,7 +94,7 @@ TEST_F(Cli, CheckPrintsTheResolvedSceneAndSizes) {
   EXPECT_NE(r.output.find("initial dt"), std::string::npos);
 }
 
-// Without --threads a run takes one thread per 25 000 particles (at most
+// Without --threads a run takes one thread per 10 000 particles (at most
 // every core): on small scenes a second thread cost more than it brought
 // (engine/cli/thread_count.hpp). OMP_NUM_THREADS, where set, stands.
 TEST_F(Cli, ThreadsFollowTheSceneSizeUnlessTheUserSays) {
@@ -104,7 +104,7 @@ TEST_F(Cli, ThreadsFollowTheSceneSizeUnlessTheUserSays) {
   const std::string small = write("small.toml", kSmallScene);
   const Result by_size = run_cli("run " + small + " --out " + (dir_ / "a").string());
   const Result given = run_cli("run " + small + " --threads 2 --out " + (dir_ / "b").string());
-  // The default scene at 0.1 m cells: 80 000 particles, three threads' worth.
+  // The default scene at 0.1 m cells: 80 000 particles, eight threads' worth.
   const Result large = run_cli("check --cell 0.1");
   setenv("OMP_NUM_THREADS", "2", 1);
   const Result from_env = run_cli("run " + small + " --out " + (dir_ / "c").string());
@@ -115,7 +115,7 @@ TEST_F(Cli, ThreadsFollowTheSceneSizeUnlessTheUserSays) {
   EXPECT_NE(from_env.output.find(", 2 threads)"), std::string::npos) << from_env.output;
   ASSERT_EQ(large.code, 0) << large.output;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const std::string expected = "on " + std::to_string(std::min(3, cores)) + " thread(s) here";
+  const std::string expected = "on " + std::to_string(std::min(8, cores)) + " thread(s) here";
   EXPECT_NE(large.output.find(expected), std::string::npos) << large.output;
 }
 
