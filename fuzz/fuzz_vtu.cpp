@@ -78,7 +78,7 @@ bool ascii_arrays_of_known_types(vtkXMLDataElement* element, const std::string& 
 // A fifth, of the same kind: CreateArray builds a string for every
 // component of every array, so 150 arrays of 9000 components each took
 // 2.9 s and 420 MB here and a CI machine five times slower past the
-// timeout (2026-12-05); and it sizes an array by components times tuples.
+// timeout; and it sizes an array by components times tuples.
 // An ASCII file lists every value of every array, so the values all its
 // arrays claim (components times tuples, a tuple at least for an empty
 // array) cannot exceed the input's size either. Tuples are the array's
