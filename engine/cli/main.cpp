@@ -392,8 +392,10 @@ int verify(const std::string& dir) {
 
 int info() {
   const char* wait = std::getenv("OMP_WAIT_POLICY");
-  std::printf("runout %s\nOpenMP threads: %d\nOpenMP wait policy: %s\n", RUNOUT_VERSION,
-              omp_get_max_threads(), wait ? wait : "(libgomp's default)");
+  const char* spins = std::getenv("GOMP_SPINCOUNT");
+  std::printf("runout %s\nOpenMP threads: %d\nOpenMP wait policy: %s\nOpenMP spin count: %s\n",
+              RUNOUT_VERSION, omp_get_max_threads(), wait ? wait : "(libgomp's default)",
+              spins ? spins : "(the policy's)");
   std::string why;
   const auto devices = cuda_devices(why);
   if (devices.empty()) std::printf("CUDA devices: none (%s)\n", why.c_str());
@@ -404,7 +406,7 @@ int info() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  runout::cli::use_passive_openmp_wait(argv);
+  runout::cli::use_short_openmp_wait(argv);
   CLI::App app{"Runout: submarine landslide runout with the material point method"};
   app.set_version_flag("--version", std::string("runout ") + RUNOUT_VERSION);
   app.require_subcommand(1);

@@ -6,9 +6,11 @@
 
 namespace runout::cli {
 
-void use_passive_openmp_wait(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY")) return;  // the user's, or set before this exec
-  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
+void use_short_openmp_wait(char** argv) {
+  // The user's, or set before this exec.
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0 || setenv("GOMP_SPINCOUNT", kSpinCount, 1) != 0)
+    return;
   execv("/proc/self/exe", argv);
 }
 

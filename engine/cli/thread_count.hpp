@@ -6,7 +6,7 @@ namespace runout::cli {
 
 // Particles per thread of the default: a step of fewer particles than about
 // this on each thread costs more in the parallel regions' wake-ups (the
-// passive wait policy, openmp_wait.hpp) than a thread saves. Measured
+// then passive wait policy, openmp_wait.hpp) than a thread saves. Measured
 // with whole runs of the default scene refined to 9 914, 20 000 and
 // 40 135 particles to 1 s, two rounds on the 2-vCPU host, 2026-12-05 with
 // 52d5c9a (README, "Performance"): one thread against two took 1.42 and

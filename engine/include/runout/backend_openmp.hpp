@@ -160,8 +160,8 @@ class OpenMpBackend : public HostBackend {
   // On every thread: cleared on one, the grid box held the other thread
   // back 1 to 3 % of a two-thread step at 1e5 particles. All its arrays in
   // one parallel loop, not one loop an array: each loop's start wakes the
-  // other threads, which under the passive wait policy the CLI sets
-  // (openmp_wait.hpp) have gone to sleep.
+  // other threads, which under the CLI's wait (openmp_wait.hpp) have
+  // gone to sleep after a brief spin.
   GridView fit_grid(const GridView& placed) {
     return fit_grid_with(placed, [](const GridView& g) {
       const int n = g.size(), ranges = (n + kChunk - 1) / kChunk;
@@ -397,7 +397,7 @@ class OpenMpBackend : public HostBackend {
   // serial sort's whatever the number of threads; done on one, it kept the
   // other waiting 6 % of a two-thread step (1e5 particles). Binning and
   // sorting in one parallel region, rather than one each, saves waking the
-  // other threads once (passive wait policy, openmp_wait.hpp).
+  // other threads once (the CLI's wait, openmp_wait.hpp).
   template <class Bin>
   void sort_by_block(int blocks, Bin bin) {
     const int n = particles_.size();
