@@ -386,14 +386,16 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
     summary.checkpoint_path = checkpoint_path;
     summary.checkpoint_time = summary.resumed_from = sim.time();
   }
-  const long first_row = resumed ? resumed->row : 0;
+  // The steps themselves, or the same steps on the threads a governor picks.
+  const auto schedule = [&](auto& steps) {
+    run_schedule(scene, options, start, steps, resumed ? resumed->row : 0, record, write_frame,
+                 every, checkpoint, at_rest, summary);
+  };
   if (options.adapt_threads > 1) {
     GovernedSteps<Driver> governed(sim, options.adapt_threads);
-    run_schedule(scene, options, start, governed, first_row, record, write_frame, every,
-                 checkpoint, at_rest, summary);
+    schedule(governed);
   } else {
-    run_schedule(scene, options, start, sim, first_row, record, write_frame, every, checkpoint,
-                 at_rest, summary);
+    schedule(sim);
   }
   return summary;
 }
