@@ -26,7 +26,6 @@ class HostBackend {
               const std::vector<double>& nonlocal_lengths)
       : particles_(std::move(particles)), materials_(materials), lengths_(nonlocal_lengths) {
     const std::size_t n = particles_.size();
-    for (auto* a : {&dx_, &dy_, &lxx_, &lxy_, &lyx_, &lyy_}) a->assign(n, 0.0);
     const bool nonlocal = std::any_of(lengths_.begin(), lengths_.end(), [](double l) { return l > 0; });
     if (nonlocal)
       for (auto* a : {&xi_start_, &xi_local_, &xi_average_}) a->assign(n, 0.0);
@@ -48,8 +47,6 @@ class HostBackend {
   }
   void fill(double* a, int count, double v) const { std::fill_n(a, count, v); }
 
-  GradientView gradients() { return {lxx_.data(), lxy_.data(), lyx_.data(), lyy_.data()}; }
-  StepScratch scratch() { return {dx_.data(), dy_.data()}; }
   double* xi_start() { return xi_start_.data(); }
   double* xi_local() { return xi_local_.data(); }
   double* xi_average() { return xi_average_.data(); }
@@ -85,7 +82,6 @@ class HostBackend {
   std::vector<MaterialParams> materials_;
   std::vector<double> lengths_;
   // Staggered in their pages (staggered_allocator.hpp), as the particles'.
-  StaggeredArray dx_, dy_, lxx_, lxy_, lyx_, lyy_;
   StaggeredArray xi_start_, xi_local_, xi_average_;  // nonlocal runs only
   StaggeredArray cell_volume_, cell_mean_;  // per cell of the grid box
 };

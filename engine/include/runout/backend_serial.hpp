@@ -23,7 +23,9 @@ class SerialDeviceBackend : public HostBackend {
   SerialDeviceBackend(Particles particles, const std::vector<MaterialParams>& materials,
                       const Base&, const std::vector<double>& nonlocal_lengths)
       : HostBackend(std::move(particles), materials, nonlocal_lengths) {
-    cell_.assign(particles_.size(), 0);
+    const std::size_t n = particles_.size();
+    cell_.assign(n, 0);
+    for (auto* a : {&dx_, &dy_, &lxx_, &lxy_, &lyx_, &lyy_}) a->assign(n, 0.0);
   }
 
   ParticleBox bounding_box() {
@@ -107,6 +109,9 @@ class SerialDeviceBackend : public HostBackend {
   SpeedMax for_cell_groups(const GridView&, const StepConfig&, F&& f) {
     return f(*this);
   }
+  // The one cell group's L and displacements: every particle's.
+  GradientView gradients() { return {lxx_.data(), lxy_.data(), lyx_.data(), lyy_.data()}; }
+  StepScratch scratch() { return {dx_.data(), dy_.data()}; }
 
   template <class Value>
   CellMeanView cell_means(const GridView& g, Value value) {
@@ -123,6 +128,7 @@ class SerialDeviceBackend : public HostBackend {
 
  private:
   std::vector<int> cell_;  // each (sorted) particle's cell in the grid box
+  StaggeredArray dx_, dy_, lxx_, lxy_, lyx_, lyy_;
 };
 
 }  // namespace runout

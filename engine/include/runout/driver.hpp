@@ -19,9 +19,11 @@
 //   cell_means(g, value)               per-cell volume-weighted means of value(p) (*)
 //   for_cell_groups(g, c, f)           f(cells) for groups of whole cells, each
 //                                      with the loops marked (*) and
-//                                      for_each_particle over its particles;
+//                                      for_each_particle over its particles,
+//                                      and gradients() and scratch(), its
+//                                      particles' L and displacements;
 //                                      the sum of the SpeedMax they return
-//   gradients(), scratch(), xi_start(), nonlocal_average(...)
+//   xi_start(), nonlocal_average(...)
 //   materials(), kernel_config(c), host_particles()
 //
 // The CPU backend (backend_openmp.hpp) runs the loops with OpenMP and
@@ -152,7 +154,7 @@ struct Gradient {
 };
 struct VolumetricRate {
   GradientView L;
-  RUNOUT_HD double operator()(int p) const { return L.xx[p] + L.yy[p]; }
+  RUNOUT_HD double operator()(int p) const { return L.xx[L.at(p)] + L.yy[L.at(p)]; }
 };
 // The particle's signal speed, or -1 where it fails a guard. With
 // volumetric smoothing (rate.mean set), L's volumetric part is first its
@@ -177,12 +179,13 @@ struct Stress {
   bool four(int p, double speeds[4]) const {
     const int m = P.material[p];
     if (P.material[p + 1] != m || P.material[p + 2] != m || P.material[p + 3] != m) return false;
-    Lanes xx = load_lanes(L.xx + p), yy = load_lanes(L.yy + p);
+    const int i = L.at(p);
+    Lanes xx = load_lanes(L.xx + i), yy = load_lanes(L.yy + i);
     if (rate.mean) {
       const double trace[4] = {rate(p), rate(p + 1), rate(p + 2), rate(p + 3)};
       set_volumetric_rate(xx, yy, load_lanes(trace));
     }
-    store_lanes(speeds, stress_update_x4(P, p, xx, load_lanes(L.xy + p), load_lanes(L.yx + p), yy,
+    store_lanes(speeds, stress_update_x4(P, p, xx, load_lanes(L.xy + i), load_lanes(L.yx + i), yy,
                                          mats[m], dt, s));
     if (c.period > 0.0 || !no_fault_x4(P, p, limits))
       for (int k = 0; k < 4; ++k) speeds[k] = checked(p + k, speeds[k]);
@@ -431,13 +434,14 @@ void Driver<Backend>::step(double dt) {
   backend_.for_each(nodes, stage::Remap{g, c, dt});
   exchange(Exchange::AfterRemap);
 
-  const GradientView L = backend_.gradients();
-  const StepScratch s = backend_.scratch();
   const bool nonlocal = nonlocal_.active();
   // Stages 6 and 7 need of other particles only those of the particle's own
   // cell (the volumetric smoothing's means), so they run group by group of
-  // whole cells.
+  // whole cells, and what they pass between them (L, the displacements)
+  // is the group's own.
   const SpeedMax speed = backend_.for_cell_groups(g, c, [&](auto& cells) {
+    const GradientView L = cells.gradients();
+    const StepScratch s = cells.scratch();
     cells.for_each_particle_stencil(g, c, stage::Gradient{g, dt, s, L});
     const CellMeanView rate =
         smooth_volumetric_ ? cells.cell_means(g, stage::VolumetricRate{L}) : CellMeanView{};

@@ -81,8 +81,13 @@ struct StepConfig {
 inline double max_courant(ShapeKind, TransferKind) { return 0.25; }
 
 // Per-particle scratch of one step: the displacement, applied at the end.
+// The step's displacement of particle p at dx[p - first], dy[p - first]:
+// over all particles (first 0), or over a CPU cell group's (a buffer of
+// its own, from its lowest particle index).
 struct StepScratch {
   double *dx, *dy;
+  int first = 0;
+  RUNOUT_HD int at(int p) const { return p - first; }
 };
 
 // The share of gravity acting at time t: all of it, or with a ramp of
@@ -885,8 +890,8 @@ RUNOUT_HD inline void displacement(int p, const St& st, const GridView& g, doubl
                                    const StepScratch& s) {
   double mid_x, mid_y;
   interpolate(g, st, g.vmx, g.vmy, mid_x, mid_y);
-  s.dx[p] = dt * mid_x;
-  s.dy[p] = dt * mid_y;
+  s.dx[s.at(p)] = dt * mid_x;
+  s.dy[s.at(p)] = dt * mid_y;
 }
 
 // Stage 6c (optional): volumetric locking relief. Undrained clay is nearly
@@ -980,8 +985,8 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Veloci
   P.fyy[p] = u.fyy;
   store_stress_point(P, p, sp);
   P.gamma_dot[p] = u.gamma_dot;
-  P.x[p] += s.dx[p];
-  P.y[p] += s.dy[p];
+  P.x[p] += s.dx[s.at(p)];
+  P.y[p] += s.dy[s.at(p)];
   return cfl_speed(P, p, mat);
 }
 
@@ -1032,8 +1037,8 @@ inline Lanes stress_update_x4(const ParticleView& P, int p, const Lanes& xx, con
   store_lanes(P.fyx + p, u.fyx);
   store_lanes(P.fyy + p, u.fyy);
   store_lanes(P.gamma_dot + p, u.gamma_dot);
-  store_lanes(P.x + p, at(P.x) + at(s.dx));
-  store_lanes(P.y + p, at(P.y) + at(s.dy));
+  store_lanes(P.x + p, at(P.x) + load_lanes(s.dx + s.at(p)));
+  store_lanes(P.y + p, at(P.y) + load_lanes(s.dy + s.at(p)));
   return signal_speed(at(P.mass), u.vol, at(P.vx), at(P.vy), mat);
 }
 

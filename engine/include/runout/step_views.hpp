@@ -9,14 +9,22 @@
 
 namespace runout {
 
-struct GradientView {  // L per particle, structure of arrays
+// L of particle p at index p - first of each array, structure of arrays
+// (first as in StepScratch).
+struct GradientView {
   double *xx, *xy, *yx, *yy;
-  RUNOUT_HD VelocityGradient load(int p) const { return {xx[p], xy[p], yx[p], yy[p]}; }
+  int first = 0;
+  RUNOUT_HD int at(int p) const { return p - first; }
+  RUNOUT_HD VelocityGradient load(int p) const {
+    const int i = at(p);
+    return {xx[i], xy[i], yx[i], yy[i]};
+  }
   RUNOUT_HD void store(int p, const VelocityGradient& l) const {
-    xx[p] = l.xx;
-    xy[p] = l.xy;
-    yx[p] = l.yx;
-    yy[p] = l.yy;
+    const int i = at(p);
+    xx[i] = l.xx;
+    xy[i] = l.xy;
+    yx[i] = l.yx;
+    yy[i] = l.yy;
   }
 };
 struct CellMeanView {  // the mean of the cell particle p is in (mean null: none)
