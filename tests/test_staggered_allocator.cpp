@@ -37,8 +37,9 @@ TEST(StaggeredAllocator, TheGridsArraysStartAtDistinctOffsets) {
   placed.ny = 70;
   placed.h = 0.1;
   const GridView g = grid.fit(placed);
-  const double* arrays[] = {g.m,  g.vol, g.px,  g.py,    g.fx,  g.fy,    g.v0x, g.v0y, g.vx, g.vy,
-                            g.vmx, g.vmy, g.fbase, g.gap, g.stuck, g.qx, g.qy,  g.xvx, g.xvy};
+  const double* arrays[] = {g.m,   g.vol, g.px,    g.py,  g.fx,    g.fy,  g.v0x,
+                            g.v0y, g.vx,  g.vy,    g.dvx, g.dvy,   g.vmx, g.vmy,
+                            g.fbase, g.gap, g.stuck, g.qx, g.qy,   g.xvx, g.xvy};
   std::set<std::uintptr_t> offsets;
   for (const double* a : arrays) offsets.insert(page_offset(a));
   EXPECT_EQ(offsets.size(), std::size(arrays));

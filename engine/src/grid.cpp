@@ -7,8 +7,8 @@ const GridView& Grid::fit(const GridView& placed) {
   g = placed;
   const std::size_t n = static_cast<std::size_t>(g.nx) * g.ny;
   if (n > m_.size()) {
-    for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &vmx_, &vmy_,
-                    &fbase_, &gap_, &stuck_, &qx_, &qy_, &xvx_, &xvy_})
+    for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &dvx_, &dvy_,
+                    &vmx_, &vmy_, &fbase_, &gap_, &stuck_, &qx_, &qy_, &xvx_, &xvy_})
       a->resize(n);
   }
   g.m = m_.data();
@@ -21,6 +21,8 @@ const GridView& Grid::fit(const GridView& placed) {
   g.v0y = v0y_.data();
   g.vx = vx_.data();
   g.vy = vy_.data();
+  g.dvx = dvx_.data();
+  g.dvy = dvy_.data();
   g.vmx = vmx_.data();
   g.vmy = vmy_.data();
   g.fbase = fbase_.data();

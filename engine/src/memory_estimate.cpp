@@ -38,9 +38,9 @@ constexpr double kParticleScratch =
     2 * sizeof(double) + sizeof(Stencil2D) + sizeof(VelocityGradient) + 4 * sizeof(int);
 constexpr double kParticleFrame = 28 * 8 + 3 * 8 + 2 * 4 + 1;
 
-// Per grid node (grid.hpp): 15 nodal doubles, and the cell volume and
+// Per grid node (grid.hpp): 21 nodal doubles, and the cell volume and
 // mean of the volumetric smoothing (one cell per node, near enough).
-constexpr double kNodeBytes = 17 * sizeof(double);
+constexpr double kNodeBytes = 23 * sizeof(double);
 
 // Per depth-averaged element (dam.hpp, dam_output.cpp): s, v and the
 // lumped mass of its node, volume, xi, gamma_dot, tau, two slope

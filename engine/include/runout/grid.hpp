@@ -26,6 +26,7 @@ struct GridView {
   double *fx, *fy;          // internal + external force
   double *v0x, *v0y;        // velocity at the start of the step, p/m
   double *vx, *vy;          // velocity at the end of the step, constrained
+  double *dvx, *dvy;        // its change in the grid update, v - v0, which FLIP carries
   double *vmx, *vmy;        // mid-step velocity (v0 + v)/2, constrained
   double *fbase;            // base's tangential force on the slide at the node, along +s
   double *gap;              // min over the node's particles of their gap to the base
@@ -79,8 +80,8 @@ class Grid {
   GridView view_;
   // Staggered in their pages (staggered_allocator.hpp): p2g adds rows of
   // m, px, py, fx and fy at the same nodes, one after another.
-  StaggeredArray m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, vmx_, vmy_, fbase_,
-      gap_, stuck_, qx_, qy_, xvx_, xvy_;
+  StaggeredArray m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, dvx_, dvy_, vmx_, vmy_,
+      fbase_, gap_, stuck_, qx_, qy_, xvx_, xvy_;
 };
 
 }  // namespace runout

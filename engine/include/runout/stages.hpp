@@ -624,6 +624,7 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
     g.px[n] = g.py[n] = 0.0;
     g.v0x[n] = g.vx[n] = vx;
     g.v0y[n] = g.vy[n] = vy;
+    g.dvx[n] = g.dvy[n] = 0.0;
     g.fbase[n] = g.stuck[n] = 0.0;
     return;
   }
@@ -664,6 +665,8 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
   g.v0y[n] = v0y;
   g.vx[n] = vx;
   g.vy[n] = vy;
+  g.dvx[n] = vx - v0x;
+  g.dvy[n] = vy - v0y;
 }
 
 // Stage 3. APIC (Jiang et al. 2015): the particle takes the grid velocity
@@ -722,27 +725,35 @@ RUNOUT_HD inline void g2p(const ParticleView& P, int p, const St& st, const Grid
     Lanes ux = splat(0.0), uy = ux;
     for_each_row(g, st, [&](int n0, double wy, double, double) {
       const Lanes N = wx * wy;
-      ux = ux + N * (load_lanes(g.vx + n0) - load_lanes(g.v0x + n0) + load_lanes(g.xvx + n0));
-      uy = uy + N * (load_lanes(g.vy + n0) - load_lanes(g.v0y + n0) + load_lanes(g.xvy + n0));
+      ux = ux + N * (load_lanes(g.dvx + n0) + load_lanes(g.xvx + n0));
+      uy = uy + N * (load_lanes(g.dvy + n0) + load_lanes(g.xvy + n0));
     });
     const Lanes u = lane_sums(ux, uy, splat(0.0), splat(0.0));
     P.vx[p] = lane(u, 0);
     P.vy[p] = lane(u, 1);
     return;
   }
-  // The change sum N (v - v0) as the difference of the two interpolations:
-  // two sums a node rather than two sums and two differences.
-  Lanes ux = splat(0.0), uy = ux, u0x = ux, u0y = ux;
+  // The change sum N (v - v0) from the grid update's v - v0 at the nodes:
+  // pure FLIP (flip_step 1, the default) reads two nodal arrays, not four.
+  double dvx, dvy;
+  if (c.flip_step == 1.0) {
+    interpolate(g, st, g.dvx, g.dvy, dvx, dvy);
+    P.vx[p] += dvx;
+    P.vy[p] += dvy;
+    return;
+  }
+  Lanes ux = splat(0.0), uy = ux, dx = ux, dy = ux;
   for_each_row(g, st, [&](int n0, double wy, double, double) {
     const Lanes N = wx * wy;
     ux = ux + N * load_lanes(g.vx + n0);
     uy = uy + N * load_lanes(g.vy + n0);
-    u0x = u0x + N * load_lanes(g.v0x + n0);
-    u0y = u0y + N * load_lanes(g.v0y + n0);
+    dx = dx + N * load_lanes(g.dvx + n0);
+    dy = dy + N * load_lanes(g.dvy + n0);
   });
-  const Lanes sums = lane_sums(ux, uy, u0x, u0y);
+  const Lanes sums = lane_sums(ux, uy, dx, dy);
   const double pic_x = lane(sums, 0), pic_y = lane(sums, 1);
-  const double dvx = pic_x - lane(sums, 2), dvy = pic_y - lane(sums, 3);
+  dvx = lane(sums, 2);
+  dvy = lane(sums, 3);
   P.vx[p] = c.flip_step * (P.vx[p] + dvx) + (1.0 - c.flip_step) * pic_x;
   P.vy[p] = c.flip_step * (P.vy[p] + dvy) + (1.0 - c.flip_step) * pic_y;
 }
@@ -1101,7 +1112,7 @@ RUNOUT_HD inline void exchange_periodic(const GridView& g, int j, Exchange after
       break;
     }
     case Exchange::AfterGridUpdate: {
-      double* const results[] = {g.v0x, g.v0y, g.vx, g.vy, g.stuck};
+      double* const results[] = {g.v0x, g.v0y, g.vx, g.vy, g.dvx, g.dvy, g.stuck};
       for (double* a : results) copy_periodic(g, j, a);
       const PeriodicColumns k = periodic_columns(g);
       for (int q = 0; q < 3; ++q) g.fbase[g.index(k.ghost[q], j)] = 0.0;
