@@ -68,22 +68,12 @@ class HostBackend {
     return g;
   }
 
-  // Zeroes the per-cell sums of cell_means for the grid box g; returns the
-  // number of cells.
-  int clear_cells(const GridView& g) {
-    const int cells = (g.nx - 1) * (g.ny - 1);
-    cell_volume_.assign(cells, 0.0);
-    cell_mean_.assign(cells, 0.0);
-    return cells;
-  }
-
   Particles particles_;
   Grid grid_;
   std::vector<MaterialParams> materials_;
   std::vector<double> lengths_;
   // Staggered in their pages (staggered_allocator.hpp), as the particles'.
   StaggeredArray xi_start_, xi_local_, xi_average_;  // nonlocal runs only
-  StaggeredArray cell_volume_, cell_mean_;  // per cell of the grid box
 };
 
 }  // namespace runout

@@ -68,6 +68,9 @@ class OpenMpBackend : public HostBackend {
   // four rather than one the step ran 1.06 to 1.11 times as fast on two
   // threads (bench_step, 1e5 and 1e6 particles).
   static constexpr int kGroupRows = 4;
+  // A cell group's cells: kGroupCellsX along x (a strip's width) by
+  // kGroupCellsY.
+  static constexpr int kGroupCellsX = kStrip * kBlock, kGroupCellsY = kGroupRows * kBlock;
 
   OpenMpBackend(Particles particles, const std::vector<MaterialParams>& materials, const Base&,
                 const std::vector<double>& nonlocal_lengths)
@@ -191,6 +194,12 @@ class OpenMpBackend : public HostBackend {
   // times as fast at 1e6 particles, 1.02 at 1e5, bench_step).
   struct GroupScratch {
     StaggeredArray xx, xy, yx, yy, dx, dy;
+    // The group's cell means (cell_means), by the cell's place in the
+    // group (particle_cell_): a cell's sums stay with the thread that takes
+    // them, where in arrays over the whole grid box a group's cells were
+    // in the cache of whichever thread had the group the step before.
+    StaggeredArray volume = StaggeredArray(kGroupCellsX * kGroupCellsY);
+    StaggeredArray mean = StaggeredArray(kGroupCellsX * kGroupCellsY);
     void fit(int count) {
       if (static_cast<int>(dx.size()) >= count) return;
       for (StaggeredArray* a : {&xx, &xy, &yx, &yy, &dx, &dy}) a->resize(count);
@@ -200,10 +209,7 @@ class OpenMpBackend : public HostBackend {
   // f(cells) for each CellGroup, in parallel: groups share no particle and
   // no cell. The sum of what they return.
   template <class F>
-  [[gnu::flatten]] SpeedMax for_cell_groups(const GridView& g, const StepConfig&, F f) {
-    const std::size_t cells = static_cast<std::size_t>(g.nx - 1) * (g.ny - 1);
-    cell_volume_.resize(cells);  // each group clears its own cells
-    cell_mean_.resize(cells);
+  [[gnu::flatten]] SpeedMax for_cell_groups(const GridView&, const StepConfig&, F f) {
     double smax = 0;
     int bad = 0;
     const double inf = std::numeric_limits<double>::infinity();
@@ -341,21 +347,19 @@ class OpenMpBackend : public HostBackend {
     // group's cells, each cell's in index order.
     template <class Value>
     CellMeanView cell_means(const GridView&, Value value) const {
-      double *const volume = b_.cell_volume_.data(), *const mean = b_.cell_mean_.data();
+      double *const volume = scratch_.volume.data(), *const mean = scratch_.mean.data();
       const double* const vol = b_.particles_.vol.data();
       const int* const cell = b_.particle_cell_.data();
-      for (int j = j0_; j < j1_; ++j)
-        for (int i = i0_; i < i1_; ++i) volume[j * b_.cells_x_ + i] = mean[j * b_.cells_x_ + i] = 0.0;
+      const int cells = (j1_ - j0_) * kGroupCellsX;
+      std::fill_n(volume, cells, 0.0);
+      std::fill_n(mean, cells, 0.0);
       for (int q = first_; q < last_; ++q) {
         const int p = b_.order_[q], c = cell[p];
         volume[c] += vol[p];
         mean[c] += vol[p] * value(p);
       }
-      for (int j = j0_; j < j1_; ++j)
-        for (int i = i0_; i < i1_; ++i) {
-          const int c = j * b_.cells_x_ + i;
-          if (volume[c] > 0.0) mean[c] /= volume[c];
-        }
+      for (int c = 0; c < cells; ++c)
+        if (volume[c] > 0.0) mean[c] /= volume[c];
       return {mean, cell};
     }
 
@@ -432,7 +436,7 @@ class OpenMpBackend : public HostBackend {
       const int ci = cell_of(P.x[p], g.ox, g.h), cj = cell_of(P.y[p], g.oy, g.h);
       const int bi = ci / kBlock;
       block[p] = ((bi / kStrip) * by + cj / kBlock) * kStrip + bi % kStrip;
-      cell[p] = cj * cells_x + ci;
+      cell[p] = (cj % kGroupCellsY) * kGroupCellsX + ci % kGroupCellsX;
     };
     const bool gimp = c.shape == ShapeKind::Gimp;
     // The particles [p0, p1): four at a time (domain_half_widths_4) from

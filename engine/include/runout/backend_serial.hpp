@@ -116,7 +116,9 @@ class SerialDeviceBackend : public HostBackend {
   template <class Value>
   CellMeanView cell_means(const GridView& g, Value value) {
     const ParticleView P = particles_.view();
-    const int cells = clear_cells(g);
+    const int cells = (g.nx - 1) * (g.ny - 1);
+    cell_volume_.assign(cells, 0.0);
+    cell_mean_.assign(cells, 0.0);
     for (int p = 0; p < P.n; ++p) {
       cell_volume_[cell_[p]] += P.vol[p];
       cell_mean_[cell_[p]] += P.vol[p] * value(p);
@@ -129,6 +131,7 @@ class SerialDeviceBackend : public HostBackend {
  private:
   std::vector<int> cell_;  // each (sorted) particle's cell in the grid box
   StaggeredArray dx_, dy_, lxx_, lxy_, lyx_, lyy_;
+  StaggeredArray cell_volume_, cell_mean_;  // per cell of the grid box
 };
 
 }  // namespace runout
