@@ -431,12 +431,14 @@ class OpenMpBackend : public HostBackend {
     const int blocks = strips_ * blocks_y_ * kStrip;
     double *const lx = lx_.data(), *const ly = ly_.data();
     int *const block = particle_block_.data(), *const cell = particle_cell_.data();
-    // The cell as the stencil finds it: its nodes must lie in the strip.
-    const auto place = [=](int p) {
-      const int ci = cell_of(P.x[p], g.ox, g.h), cj = cell_of(P.y[p], g.oy, g.h);
-      const int bi = ci / kBlock;
-      block[p] = ((bi / kStrip) * by + cj / kBlock) * kStrip + bi % kStrip;
-      cell[p] = (cj % kGroupCellsY) * kGroupCellsX + ci % kGroupCellsX;
+    // Particle p's block and place in its cell group from its cell (ci,
+    // cj) as the stencil finds it (cell_of): its nodes must lie in the
+    // strip. The cell lies in the box, so its indices are not negative.
+    const unsigned blocks_up = by;
+    const auto place = [=](int p, unsigned ci, unsigned cj) {
+      const unsigned bi = ci / kBlock;
+      block[p] = static_cast<int>(((bi / kStrip) * blocks_up + cj / kBlock) * kStrip + bi % kStrip);
+      cell[p] = static_cast<int>((cj % kGroupCellsY) * kGroupCellsX + ci % kGroupCellsX);
     };
     const bool gimp = c.shape == ShapeKind::Gimp;
     // The particles [p0, p1): four at a time (domain_half_widths_4) from
@@ -446,11 +448,15 @@ class OpenMpBackend : public HostBackend {
       int p = p0;
       for (; gimp && p + 4 <= p1; p += 4) {
         domain_half_widths_4(P, p, c, g.h, lx + p, ly + p);
-        for (int k = p; k < p + 4; ++k) place(k);
+        // cell_of four at a time
+        const Lanes ci = floor_lanes(grid_coordinate(load_lanes(P.x + p), g.ox, g.h));
+        const Lanes cj = floor_lanes(grid_coordinate(load_lanes(P.y + p), g.oy, g.h));
+        for (int k = 0; k < 4; ++k)
+          place(p + k, static_cast<int>(lane(ci, k)), static_cast<int>(lane(cj, k)));
       }
       for (; p < p1; ++p) {
         domain_half_widths(P, p, c, g.h, lx[p], ly[p]);
-        place(p);
+        place(p, cell_of(P.x[p], g.ox, g.h), cell_of(P.y[p], g.oy, g.h));
       }
     };
     sort_by_block(blocks, bin_range);
