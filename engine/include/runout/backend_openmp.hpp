@@ -264,10 +264,7 @@ class OpenMpBackend : public HostBackend {
         : b_(b), scratch_(scratch) {
       first_ = b.group_start(strip, by0);
       last_ = b.group_start(strip, by1);
-      i0_ = strip * kStrip * kBlock;
-      i1_ = std::min(i0_ + kStrip * kBlock, b.cells_x_);
-      j0_ = by0 * kBlock;
-      j1_ = std::min(by1 * kBlock, b.cells_y_);
+      rows_ = std::min(by1 * kBlock, b.cells_y_) - by0 * kBlock;
       // The group's particle indices: since the last reorder, the run
       // first_ .. last_ - 1 and the few that have moved in from the groups
       // around it (whose indices lie near).
@@ -350,7 +347,7 @@ class OpenMpBackend : public HostBackend {
       double *const volume = scratch_.volume.data(), *const mean = scratch_.mean.data();
       const double* const vol = b_.particles_.vol.data();
       const int* const cell = b_.particle_cell_.data();
-      const int cells = (j1_ - j0_) * kGroupCellsX;
+      const int cells = rows_ * kGroupCellsX;
       std::fill_n(volume, cells, 0.0);
       std::fill_n(mean, cells, 0.0);
       for (int q = first_; q < last_; ++q) {
@@ -367,7 +364,7 @@ class OpenMpBackend : public HostBackend {
     OpenMpBackend& b_;
     GroupScratch& scratch_;  // its thread's
     int first_, last_;      // the particles order_[first_ .. last_)
-    int i0_, i1_, j0_, j1_;  // the cells [i0_, i1_) x [j0_, j1_)
+    int rows_;               // its rows of cells (kGroupCellsY, or fewer at the box's top)
     int lowest_ = 0;         // the smallest particle index among them
     ParticleBox box_{};      // max_speed's
   };
@@ -424,7 +421,7 @@ class OpenMpBackend : public HostBackend {
     const ParticleView P = particles_.view();
     const GridView g = grid;
     const StepConfig c = config;
-    const int cells_x = cells_x_ = g.nx - 1, cells_y = cells_y_ = g.ny - 1;
+    const int cells_x = g.nx - 1, cells_y = cells_y_ = g.ny - 1;
     const int blocks_x = (cells_x + kBlock - 1) / kBlock;
     const int by = blocks_y_ = (cells_y + kBlock - 1) / kBlock;
     strips_ = (blocks_x + kStrip - 1) / kStrip;
@@ -561,7 +558,7 @@ class OpenMpBackend : public HostBackend {
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, next_;
   std::vector<std::atomic<int>> strip_done_;  // a scatter's strips, 1 once added
   std::vector<GroupScratch> group_scratch_;     // a thread's, for its cell groups
-  int blocks_y_ = 0, strips_ = 0, cells_x_ = 0, cells_y_ = 0;
+  int blocks_y_ = 0, strips_ = 0, cells_y_ = 0;
   ParticleBox box_{};  // bounding_box's, when box_known_
   bool box_known_ = false;
 };

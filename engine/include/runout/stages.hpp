@@ -80,10 +80,10 @@ struct StepConfig {
 // linear shape functions are held to the same limit.
 inline double max_courant(ShapeKind, TransferKind) { return 0.25; }
 
-// Per-particle scratch of one step: the displacement, applied at the end.
-// The step's displacement of particle p at dx[p - first], dy[p - first]:
-// over all particles (first 0), or over a CPU cell group's (a buffer of
-// its own, from its lowest particle index).
+// Per-particle scratch of one step: the displacement, applied at the end,
+// of particle p at dx[p - first], dy[p - first]: over all particles
+// (first 0), or over a CPU cell group's (a buffer of its own, from its
+// lowest particle index).
 struct StepScratch {
   double *dx, *dy;
   int first = 0;
