@@ -25,10 +25,16 @@ void Particles::resize(int n) {
 
 namespace {
 
+// On every thread: the OpenMP backend reorders its particles every few
+// dozen steps (kReorderInterval), and done on one thread the copies held
+// the others waiting 2.6 ms each time at 1e5 particles, 1 % of a
+// two-thread run.
 template <class Array>
 void gather(Array& a, const std::vector<int>& order, Array& scratch) {
   scratch.resize(a.size());
-  for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = a[order[k]];
+  const long n = static_cast<long>(order.size());
+#pragma omp parallel for schedule(static) if (n > 65536)
+  for (long k = 0; k < n; ++k) scratch[k] = a[order[k]];
   a.swap(scratch);
 }
 
