@@ -64,10 +64,13 @@ class OpenMpBackend : public HostBackend {
   // Particles drift out of block order slowly (a cell in many steps), so
   // sorting them in memory every few dozen steps keeps the loops sequential.
   static constexpr long kReorderInterval = 50;
-  // A cell group (CellGroup) is kGroupRows block rows of a strip: with
-  // four rather than one the step ran 1.06 to 1.11 times as fast on two
-  // threads (bench_step, 1e5 and 1e6 particles).
-  static constexpr int kGroupRows = 4;
+  // A cell group (CellGroup) is kGroupRows block rows of a strip. Taken
+  // by whichever thread came first, four rows ran 1.06 to 1.11 times as
+  // fast as one on two threads (bench_step, 1e5 and 1e6 particles); taken
+  // owner first (OwnedQueue), two ran 1.01 to 1.02 times as fast as four
+  // at 1e5 and 1.00 to 1.01 at 1e6, and one 1.01 times as fast as two at
+  // 1e5 but 0.96 to 0.97 at 1e6.
+  static constexpr int kGroupRows = 2;
   // A cell group's cells: kGroupCellsX along x (a strip's width) by
   // kGroupCellsY.
   static constexpr int kGroupCellsX = kStrip * kBlock, kGroupCellsY = kGroupRows * kBlock;
