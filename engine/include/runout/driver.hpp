@@ -16,7 +16,11 @@
 //                                      (the CPU's four at a time, stage.four) (*)
 //   sum(a, count)                      a sum over nodes
 //   fill(a, count, v)
-//   cell_means(g, value)               per-cell volume-weighted means of value(p) (*)
+//   cell_means(g, value)               per-cell volume-weighted means of value(p) (*),
+//                                      or, where a group has kMeansInPasses, taken
+//                                      in the pass before: the overloads
+//                                      for_each_particle_stencil(g, c, stage, value)
+//                                      and max_speed(stage, value, means)
 //   for_cell_groups(g, c, f)           f(cells) for groups of whole cells, each
 //                                      with the loops marked (*) and
 //                                      for_each_particle over its particles,
@@ -38,6 +42,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -317,6 +322,37 @@ inline double first_signal_speed(Particles& particles,
   return smax;
 }
 
+// A cell group's pass, and its cells' volume-weighted means of mean_of:
+// taken in the same pass where the group offers it (kMeansInPasses, the
+// CPU's), else in a loop of their own after it (cell_means).
+template <class Cells, class = void>
+constexpr bool means_in_passes = false;
+template <class Cells>
+constexpr bool means_in_passes<Cells, std::void_t<decltype(Cells::kMeansInPasses)>> =
+    Cells::kMeansInPasses;
+
+template <class Cells, class Stage, class Value>
+CellMeanView stencil_pass_and_means(Cells& cells, const GridView& g, const StepConfig& c,
+                                    const Stage& stage, const Value& mean_of) {
+  if constexpr (means_in_passes<Cells>) {
+    return cells.for_each_particle_stencil(g, c, stage, mean_of);
+  } else {
+    cells.for_each_particle_stencil(g, c, stage);
+    return cells.cell_means(g, mean_of);
+  }
+}
+template <class Cells, class Stage, class Value>
+SpeedMax max_speed_and_means(Cells& cells, const GridView& g, const Stage& stage,
+                             const Value& mean_of, CellMeanView& means) {
+  if constexpr (means_in_passes<Cells>) {
+    return cells.max_speed(stage, mean_of, means);
+  } else {
+    const SpeedMax speed = cells.max_speed(stage);
+    means = cells.cell_means(g, mean_of);
+    return speed;
+  }
+}
+
 }  // namespace driver_detail
 
 template <class Backend>
@@ -442,16 +478,21 @@ void Driver<Backend>::step(double dt) {
   const SpeedMax speed = backend_.for_cell_groups(g, c, [&](auto& cells) {
     const GradientView L = cells.gradients();
     const StepScratch s = cells.scratch();
-    cells.for_each_particle_stencil(g, c, stage::Gradient{g, dt, s, L});
-    const CellMeanView rate =
-        smooth_volumetric_ ? cells.cell_means(g, stage::VolumetricRate{L}) : CellMeanView{};
+    const stage::Gradient gradient{g, dt, s, L};
+    CellMeanView rate{}, mean{};
+    if (smooth_volumetric_)
+      rate = driver_detail::stencil_pass_and_means(cells, g, c, gradient, stage::VolumetricRate{L});
+    else
+      cells.for_each_particle_stencil(g, c, gradient);
     if (nonlocal) cells.for_each_particle(stage::CopyXi{P, backend_.xi_start()});
+    const stage::Stress stress{P, L, rate, backend_.materials(), dt, s, c, limits_};
     const SpeedMax sp =
-        cells.max_speed(stage::Stress{P, L, rate, backend_.materials(), dt, s, c, limits_});
+        smooth_volumetric_
+            ? driver_detail::max_speed_and_means(cells, g, stress, stage::MeanStress{P}, mean)
+            : cells.max_speed(stress);
     // A group with a failed particle is left as its update left it, for
     // describe_faults: its cell means would spread the failure to its cells.
-    if (smooth_volumetric_ && sp.bad == 0)
-      cells.for_each_particle(stage::SetMeanStress{P, cells.cell_means(g, stage::MeanStress{P})});
+    if (smooth_volumetric_ && sp.bad == 0) cells.for_each_particle(stage::SetMeanStress{P, mean});
     return sp;
   });
   if (speed.bad > 0) fail(dt);
