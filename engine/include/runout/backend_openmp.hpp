@@ -552,18 +552,10 @@ class OpenMpBackend : public HostBackend {
     const int* const block = particle_block_.data();
     int* const order = order_.data();
     block_start_.assign(blocks + 1, 0);
-    int most = 1;
-#ifdef _OPENMP
-    most = omp_get_max_threads();
-#endif
-    next_.resize(static_cast<std::size_t>(most) * blocks);
+    next_.resize(static_cast<std::size_t>(max_threads()) * blocks);
 #pragma omp parallel firstprivate(bin) if (n > kParallelMin)
     {
-      int t = 0, threads = 1;
-#ifdef _OPENMP
-      t = omp_get_thread_num();
-      threads = omp_get_num_threads();
-#endif
+      const int t = this_thread(), threads = team_threads();
       // next_: thread t's count in each block, then its next place there.
       int* const next = next_.data() + static_cast<std::size_t>(t) * blocks;
       std::fill_n(next, blocks, 0);
@@ -669,7 +661,8 @@ class OpenMpBackend : public HostBackend {
   // from the other core's cache as often as not.
   int owner(int first, int last, int threads) const {
     const long n = std::max<long>(1, static_cast<long>(order_.size()));
-    return static_cast<int>(std::min<long>(threads - 1, (first + static_cast<long>(last)) / 2 * threads / n));
+    const long middle = (first + static_cast<long>(last)) / 2;
+    return static_cast<int>(std::min<long>(threads - 1, middle * threads / n));
   }
   static int max_threads() {
 #ifdef _OPENMP
@@ -683,6 +676,13 @@ class OpenMpBackend : public HostBackend {
     return omp_get_thread_num();
 #else
     return 0;
+#endif
+  }
+  static int team_threads() {  // in the parallel region that calls it
+#ifdef _OPENMP
+    return omp_get_num_threads();
+#else
+    return 1;
 #endif
   }
 
