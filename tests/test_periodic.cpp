@@ -4,8 +4,12 @@
 //   travelled;
 // - an infinite layer: a Bingham layer (the additive rate form with n = 1)
 //   on a no-slip incline reaches the analytic plug-flow velocity profile
-//   within 2 %.
+//   within 2 %;
+// - particles that cross the seam between reorders join cell groups at the
+//   other end of the box without growing the threads' buffers to the
+//   particle count, and the results stay those of one thread.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -66,6 +70,43 @@ TEST(Periodic, BlockDriftsAcrossTheSeamUnchanged) {
   EXPECT_LT(worst_travel, 1e-9);
   EXPECT_LT(worst_wrap, 1e-9);
   EXPECT_LT(worst_gap, 1e-9);
+}
+
+// A block of 72 000 particles drifting across the seam: between reorders
+// the particles that crossed keep their indices, from the far end of the
+// order, so the cell groups they join span nearly all the particles. Each
+// thread's buffers stay within the span limit (one thread's share of the
+// particles here), and two threads give one thread's results bit for bit.
+TEST(Periodic, SeamCrossingsKeepCellGroupBuffersBounded) {
+  Scene s = fixtures::block_scene({1.9, 0.5}, {5.9, 3.3125}, {0.0, 0.0}, {6.0, 4.0}, 0.05, 4, 1000.0,
+                                  1e6, 0.3);
+  make_periodic(s);
+  s.bodies[0].velocity = {5.0, 0.0};
+  const auto run = [&](int threads, int& buffer) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    Simulation sim(s);
+    sim.advance_to(0.05);  // the front 0.25 m past the seam, five reorders
+    omp_set_num_threads(before);
+    buffer = sim.backend().group_buffer_particles();
+    return sim.particles();
+  };
+  int one_buffer = 0, two_buffer = 0;
+  const Particles one = run(1, one_buffer);
+  const Particles two = run(2, two_buffer);
+  ASSERT_EQ(one.size(), 72000);
+  int crossed = 0;
+  for (int p = 0; p < two.size(); ++p) crossed += two.x[p] < 1.0;
+  EXPECT_GT(crossed, 1000);
+  std::printf("%d particles crossed; buffers of %d particles on one thread, %d on two\n", crossed,
+              one_buffer, two_buffer);
+  EXPECT_LE(two_buffer, std::max(OpenMpBackend::kGroupSpanMin, one.size() / 2));
+  for (int p = 0; p < one.size(); ++p) {
+    ASSERT_EQ(one.id[p], two.id[p]) << p;
+    ASSERT_EQ(one.x[p], two.x[p]) << p;
+    ASSERT_EQ(one.vx[p], two.vx[p]) << p;
+    ASSERT_EQ(one.sxx[p], two.sxx[p]) << p;
+  }
 }
 
 // A Bingham layer of depth H on a slope theta, no-slip at its base:

@@ -74,6 +74,12 @@ class OpenMpBackend : public HostBackend {
   // A cell group's cells: kGroupCellsX along x (a strip's width) by
   // kGroupCellsY.
   static constexpr int kGroupCellsX = kStrip * kBlock, kGroupCellsY = kGroupRows * kBlock;
+  // The least span of particle indices a cell group's buffers may take
+  // (1.5 MiB a thread) before the limit on them (for_cell_groups) sends
+  // the group to whole-particle arrays: four groups' worth at 4 x 4
+  // particles a cell, so that groups that only take in particles from the
+  // strips beside them keep their own.
+  static constexpr int kGroupSpanMin = 1 << 15;
 
   OpenMpBackend(Particles particles, const std::vector<MaterialParams>& materials, const Base&,
                 const std::vector<double>& nonlocal_lengths)
@@ -255,6 +261,9 @@ class OpenMpBackend : public HostBackend {
     const bool parallel = particles_.size() > kParallelMin;
     const int threads = parallel ? max_threads() : 1;
     if (group_scratch_.size() < static_cast<std::size_t>(threads)) group_scratch_.resize(threads);
+    // Buffers of threads x span_limit_ particles at most, as many as the
+    // whole-particle arrays: a group whose span is longer uses those.
+    span_limit_ = std::max(kGroupSpanMin, particles_.size() / threads);
     group_queue_.reset(threads);
     for (int k = 0; k < groups; ++k)
       group_queue_.add(owner(group_start(k / bands, by0(k)), group_start(k / bands, by1(k)), threads),
@@ -279,6 +288,13 @@ class OpenMpBackend : public HostBackend {
     box_known_ = bad == 0;
     box_ = {xmin, xmax, ymin, ymax, 0};
     return {smax, bad};
+  }
+
+  // The longest of the threads' cell-group buffers, in particles.
+  int group_buffer_particles() const {
+    std::size_t most = 0;
+    for (const GroupScratch& s : group_scratch_) most = std::max(most, s.dx.size());
+    return static_cast<int>(most);
   }
 
   // Whoever takes the particles may move them.
@@ -309,16 +325,25 @@ class OpenMpBackend : public HostBackend {
         lo = std::min(lo, b.order_[q]);
         hi = std::max(hi, b.order_[q]);
       }
-      lowest_ = lo;
-      if (hi >= lo) scratch_.fit(hi - lo + 1);
+      if (hi < lo) return;
+      // A particle that has crossed a periodic seam since the last reorder
+      // keeps its index but joins a group at the other end of the box, so
+      // the span lo .. hi can reach across all the particles: sized to it,
+      // every thread's buffers would grow to the particle count.
+      if (hi - lo < b.span_limit_) {
+        lowest_ = lo;
+        scratch_.fit(hi - lo + 1);
+      } else {
+        arrays_ = &b.whole_particle_scratch();
+      }
     }
     bool empty() const { return first_ == last_; }
 
     GradientView gradients() const {
-      return {scratch_.xx.data(), scratch_.xy.data(), scratch_.yx.data(), scratch_.yy.data(),
+      return {arrays_->xx.data(), arrays_->xy.data(), arrays_->yx.data(), arrays_->yy.data(),
               lowest_};
     }
-    StepScratch scratch() const { return {scratch_.dx.data(), scratch_.dy.data(), lowest_}; }
+    StepScratch scratch() const { return {arrays_->dx.data(), arrays_->dy.data(), lowest_}; }
 
     template <class Stage>
     void for_each_particle(Stage stage) const {
@@ -444,7 +469,8 @@ class OpenMpBackend : public HostBackend {
     GroupScratch& scratch_;  // its thread's
     int first_, last_;      // the particles order_[first_ .. last_)
     int rows_;               // its rows of cells (kGroupCellsY, or fewer at the box's top)
-    int lowest_ = 0;         // the smallest particle index among them
+    GroupScratch* arrays_ = &scratch_;  // L and the displacements: its thread's, or whole-particle
+    int lowest_ = 0;         // the particle index at arrays_' start
     ParticleBox box_{};      // max_speed's
   };
 
@@ -686,6 +712,14 @@ class OpenMpBackend : public HostBackend {
 #endif
   }
 
+  // Sized once, on whichever thread first needs it; the groups that use it
+  // write only their own particles' places.
+  GroupScratch& whole_particle_scratch() {
+#pragma omp critical(runout_whole_particle_scratch)
+    whole_particle_scratch_.fit(particles_.size());
+    return whole_particle_scratch_;
+  }
+
   // Spins briefly, then yields: the strip is running on another thread,
   // which may have lost its core to another process.
   void wait_for_strip(int strip) const {
@@ -700,6 +734,8 @@ class OpenMpBackend : public HostBackend {
   std::vector<double> piece_sums_;             // sum's
   std::vector<std::atomic<int>> strip_done_;  // a scatter's strips, 1 once added
   std::vector<GroupScratch> group_scratch_;     // a thread's, for its cell groups
+  GroupScratch whole_particle_scratch_;          // for groups whose span passes span_limit_
+  int span_limit_ = kGroupSpanMin;
   OwnedQueue colour_queue_[2], group_queue_;  // the scatters', the cell groups' work
   int blocks_y_ = 0, strips_ = 0, cells_y_ = 0;
   ParticleBox box_{};  // bounding_box's, when box_known_
