@@ -261,9 +261,9 @@ class OpenMpBackend : public HostBackend {
     const bool parallel = particles_.size() > kParallelMin;
     const int threads = parallel ? max_threads() : 1;
     if (group_scratch_.size() < static_cast<std::size_t>(threads)) group_scratch_.resize(threads);
-    // Buffers of threads x span_limit_ particles at most, as many as the
+    // Buffers of threads x span_limit particles at most, as many as the
     // whole-particle arrays: a group whose span is longer uses those.
-    span_limit_ = std::max(kGroupSpanMin, particles_.size() / threads);
+    const int span_limit = std::max(kGroupSpanMin, particles_.size() / threads);
     group_queue_.reset(threads);
     for (int k = 0; k < groups; ++k)
       group_queue_.add(owner(group_start(k / bands, by0(k)), group_start(k / bands, by1(k)), threads),
@@ -273,7 +273,7 @@ class OpenMpBackend : public HostBackend {
     {
       const int thread = this_thread();
       group_queue_.run(thread, [&](int k) {
-        CellGroup cells(*this, k / bands, by0(k), by1(k), group_scratch_[thread]);
+        CellGroup cells(*this, k / bands, by0(k), by1(k), span_limit, group_scratch_[thread]);
         if (cells.empty()) return;
         const SpeedMax speed = f(cells);
         smax = std::max(smax, speed.max);
@@ -312,7 +312,7 @@ class OpenMpBackend : public HostBackend {
   // particles had written it out to memory and read it back.
   class CellGroup {
    public:
-    CellGroup(OpenMpBackend& b, int strip, int by0, int by1, GroupScratch& scratch)
+    CellGroup(OpenMpBackend& b, int strip, int by0, int by1, int span_limit, GroupScratch& scratch)
         : b_(b), scratch_(scratch) {
       first_ = b.group_start(strip, by0);
       last_ = b.group_start(strip, by1);
@@ -330,7 +330,7 @@ class OpenMpBackend : public HostBackend {
       // keeps its index but joins a group at the other end of the box, so
       // the span lo .. hi can reach across all the particles: sized to it,
       // every thread's buffers would grow to the particle count.
-      if (hi - lo < b.span_limit_) {
+      if (hi - lo < span_limit) {
         lowest_ = lo;
         scratch_.fit(hi - lo + 1);
       } else {
@@ -734,8 +734,7 @@ class OpenMpBackend : public HostBackend {
   std::vector<double> piece_sums_;             // sum's
   std::vector<std::atomic<int>> strip_done_;  // a scatter's strips, 1 once added
   std::vector<GroupScratch> group_scratch_;     // a thread's, for its cell groups
-  GroupScratch whole_particle_scratch_;          // for groups whose span passes span_limit_
-  int span_limit_ = kGroupSpanMin;
+  GroupScratch whole_particle_scratch_;          // for groups whose span passes the limit
   OwnedQueue colour_queue_[2], group_queue_;  // the scatters', the cell groups' work
   int blocks_y_ = 0, strips_ = 0, cells_y_ = 0;
   ParticleBox box_{};  // bounding_box's, when box_known_
