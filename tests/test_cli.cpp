@@ -157,17 +157,14 @@ TEST_F(Cli, RunWritesFramesIndexHistoryAndResolvedScene) {
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left";
 }
 
-// Only the CPU driver averages nonlocally: the cuda backend refuses such a
-// scene with 69 whether or not a device is there, naming the key; on the
-// CPU the scene runs.
-// Nonlocal softening runs in the one driver (driver.hpp), so on either
+// Regularised softening runs in the one driver (driver.hpp), so on either
 // backend: where the cuda backend is refused it is for want of a device,
 // never for the scene.
 TEST_F(Cli, NonlocalSofteningRunsOnEitherBackend) {
   std::string text = kSmallScene;
   const std::string elastic = "poisson_ratio = 0.3\n";
   text.replace(text.find(elastic), elastic.size(),
-               elastic + "model = \"tresca\"\nsu0 = 5000.0\nnonlocal_length = 1.0\n");
+               elastic + "model = \"tresca\"\nsu0 = 5000.0\nband_thickness = 0.2\nnonlocal_length = 1.0\n");
   const std::string scene = write("small.toml", text);
   const Result cuda = run_cli("run " + scene + " --backend cuda -q --out " + (dir_ / "gpu").string());
   EXPECT_TRUE(cuda.code == 0 || cuda.code == 69) << cuda.output;

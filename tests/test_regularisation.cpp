@@ -1,25 +1,30 @@
-// Regularisation of strain softening by nonlocal averaging (nonlocal.hpp,
-// docs/strength.md "Nonlocal softening"):
-// - the average itself against its defining properties on a particle
-//   lattice: a uniform field is kept exactly, a spike spreads into the
-//   Gaussian with the kernel's analytic integral, and inside a body the
-//   volume integral of the field is kept;
-// - the averaging runs in a fixed order: the same bits on 1 and 2 threads;
-// - the mesh dependence it removes: a small softening slide (the case 4
-//   clay) on three coarse meshes runs out more than 10 % further on the
-//   finer ones without it, and within 10 % with it.
+// Regularised softening (nonlocal.hpp, docs/strength.md "Regularised
+// softening"):
+// - the operator against its defining property: a thin band carrying the
+//   plastic displacement delta gives its centre delta / t_s, wherever it
+//   lies between lattice nodes, for two lengths l, inside the body and
+//   along its edge; a periodic lattice closes on itself; materials apart;
+//   the same bits on 1 and 2 threads;
+// - a softening layer in simple shear: the shear stress against the top's
+//   displacement is the analytic curve of a band of thickness t_s, and the
+//   same at three cells, two particle counts and two lengths, and the work
+//   it dissipates is the analytic value; the local law fails both;
+// - a small softening slide runs out as far on three cells, two particle
+//   counts and two lengths; the local law does not.
 #include <gtest/gtest.h>
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "runout/morphology.hpp"
 #include "runout/nonlocal.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
+#include "scene_builders.hpp"
 
 using namespace runout;
 
@@ -28,120 +33,127 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // A square lattice of nx x ny particles of spacing a (volume a^2), one
-// material, centred on the origin.
+// material, its lower left particle at (x0, y0).
 struct Lattice {
   int nx, ny;
   double a;
   std::vector<double> x, y, vol;
   std::vector<int> material;
 
-  Lattice(int nx_, int ny_, double a_) : nx(nx_), ny(ny_), a(a_) {
+  Lattice(int nx_, int ny_, double a_, double x0 = 0.0, double y0 = 0.0)
+      : nx(nx_), ny(ny_), a(a_) {
     for (int j = 0; j < ny; ++j) {
       for (int i = 0; i < nx; ++i) {
-        x.push_back((i - 0.5 * (nx - 1)) * a);
-        y.push_back((j - 0.5 * (ny - 1)) * a);
+        x.push_back(x0 + i * a);
+        y.push_back(y0 + j * a);
         vol.push_back(a * a);
         material.push_back(0);
       }
     }
   }
   int size() const { return nx * ny; }
-  int centre() const { return (ny / 2) * nx + nx / 2; }
+  int at(int i, int j) const { return j * nx + i; }
   NonlocalPoints points() const {
     return {size(), x.data(), y.data(), vol.data(), material.data()};
   }
 };
 
+// One row of particles of a lattice (a band one particle thick) with the
+// increment a: the band carries delta = a times the spacing.
+std::vector<double> band_row(const Lattice& L, int row, double a) {
+  std::vector<double> in(L.size(), 0.0);
+  for (int i = 0; i < L.nx; ++i) in[L.at(i, row)] = a;
+  return in;
+}
+
 }  // namespace
 
-TEST(NonlocalAverage, AUniformFieldStaysUniform) {
-  const Lattice L(30, 12, 0.2);  // edges and corners within the cut-off
-  NonlocalAverage avg({0.5});
-  const std::vector<double> in(L.size(), 0.37);
+// The discrete operator's own factor varies with where the band lies
+// between nodes by at most 0.2 % (quadratic B-splines); linear weights
+// would give 5 % at this spacing.
+TEST(NonlocalAverage, TheBandPeakDoesNotDependOnWhereTheBandLies) {
+  const double d = 1.0 / kLatticePerLength;
+  const double p0 = NonlocalAverage::band_peak(d, 0.0);
+  for (double s = -0.5; s < 0.5; s += 0.05)
+    EXPECT_NEAR(NonlocalAverage::band_peak(d, s) / p0, 1.0, 2.5e-3) << s;
+}
+
+// A thin band carrying delta, inside the body, along a no-slip base (the
+// particles' images in it), and across the body ending at its free
+// surfaces: each remoulds by delta / t_s within 1 % (at its ends within
+// 3 %), for two lengths and for bands at several offsets from the
+// lattice's nodes; the particles beside a band, which do not yield, keep
+// their xi.
+TEST(NonlocalAverage, AThinBandRemouldsAfterItsDisplacementOverTs) {
+  const double a = 0.02, t_s = 0.05, dxi = 0.01, delta = dxi * a;
+  for (double l : {0.2, 0.35}) {
+    for (double shift : {0.0, 0.013, 0.031, 0.05}) {
+      const Lattice L(121, 121, a, 0.0, shift);
+      BaseView base;
+      base.kind = BaseKind::Planar;
+      base.y0 = shift - 0.5 * a;  // the body's lower edge
+      NonlocalAverage avg({Regularisation{l, t_s}}, 0.0, 0.0, base);
+      std::vector<double> out(L.size());
+      for (int row : {60, 0}) {
+        const std::vector<double> in = band_row(L, row, dxi);
+        avg.apply(L.points(), in.data(), out.data());
+        EXPECT_NEAR(out[L.at(60, row)] / (delta / t_s), 1.0, 0.01)
+            << "l " << l << " shift " << shift << " row " << row;
+        EXPECT_EQ(out[L.at(60, row + 1)], 0.0);
+      }
+      std::vector<double> in(L.size(), 0.0);  // a band from the base to the top
+      for (int j = 0; j < L.ny; ++j) in[L.at(60, j)] = dxi;
+      NonlocalAverage free_edges({Regularisation{l, t_s}});
+      free_edges.apply(L.points(), in.data(), out.data());
+      for (int j : {0, 60, 120})
+        EXPECT_NEAR(out[L.at(60, j)] / (delta / t_s), 1.0, j == 60 ? 0.01 : 0.03)
+            << "l " << l << " shift " << shift << " end " << j;
+    }
+  }
+}
+
+// Yield spread over a zone wider than the averaging keeps its own strain:
+// no band concentrates it.
+TEST(NonlocalAverage, DiffuseYieldKeepsItsOwnStrain) {
+  const Lattice L(100, 100, 0.02);
+  NonlocalAverage avg({Regularisation{0.2, 0.05}});
+  const std::vector<double> in(L.size(), 0.003);
   std::vector<double> out(L.size());
   avg.apply(L.points(), in.data(), out.data());
-  for (int p = 0; p < L.size(); ++p) EXPECT_NEAR(out[p], 0.37, 1e-15) << p;
+  for (int p = 0; p < L.size(); ++p) ASSERT_NEAR(out[p], 0.003, 1e-12) << p;
 }
 
-// A spike a_q at the centre of a lattice of spacing a = 0.2 m, about l / 4,
-// spreads into a*_p = exp(-(r / l)^2) V a_q / W_p, W_p = sum_q w V_q: the
-// numerator is exact (the spike's bin holds its V a at the spike), W_p is
-// the binned sum. Exact, W_p would be the integral of w over the cut-off
-// disc, pi l^2 (1 - e^-9), to 1.9e-4 (the disc's ragged edge: a ring about
-// a wide where w = e^-9, e^-9 2 pi (3 l) a / (pi l^2)). The bins add their
-// Taylor remainder, third order in (l / 2) / l, and their cut-off: a bin is
-// in or out by its centroid, up to half a diagonal d = 0.35 l from its
-// points, which moves at most exp(-(3 - 0.35)^2) - exp(-(3 + 0.35)^2) =
-// 8.9e-4 of the weight in or out. So 1.1e-3 in a*, and in the integral
-// sum_p V_p a*_p, which would be V a_q exactly were all W_p within reach
-// the same (measured 2.0e-4 and 3e-5).
-TEST(NonlocalAverage, ASpikeSpreadsIntoTheGaussianAndKeepsItsIntegral) {
-  const double l = 0.83;
-  const Lattice L(81, 81, 0.2);  // 9.6 l from the spike to the edges; reach 6 l
-  NonlocalAverage avg({l});
-  std::vector<double> in(L.size(), 0.0), out(L.size());
-  const int q = L.centre();
-  in[q] = 1.0;
+TEST(NonlocalAverage, APeriodicLatticeClosesOnItself) {
+  const double a = 0.02, t_s = 0.05;
+  const Lattice L(20, 81, a);  // period 0.4 m, far less than 6 l
+  NonlocalAverage avg({Regularisation{0.3, t_s}}, 20 * a, -0.5 * a);
+  const std::vector<double> in = band_row(L, 40, 0.01);
+  std::vector<double> out(L.size());
   avg.apply(L.points(), in.data(), out.data());
-  const double V = L.a * L.a;
-  const double W = kPi * l * l * (1.0 - std::exp(-9.0));
-  // A bin is in or out by its volume centroid, which may lie a bin's
-  // diagonal from the spike: within the cut-off less the diagonal the
-  // spike arrives, beyond the cut-off plus the diagonal nothing does.
-  const double diagonal = std::sqrt(2.0) * l / kNonlocalBinsPerLength;
-  double total = 0, worst = 0;
-  for (int p = 0; p < L.size(); ++p) {
-    total += L.vol[p] * out[p];
-    const double r = std::hypot(L.x[p] - L.x[q], L.y[p] - L.y[q]);
-    if (r > kNonlocalCutoff * l + diagonal) {
-      EXPECT_EQ(out[p], 0.0) << p;
-    }
-    if (r > kNonlocalCutoff * l - diagonal) continue;
-    const double exact = std::exp(-r * r / (l * l)) * V / W;
-    worst = std::max(worst, std::fabs(out[p] - exact) / exact);
+  for (int i = 0; i < L.nx; ++i) {
+    EXPECT_NEAR(out[L.at(i, 40)] / (0.01 * a / t_s), 1.0, 0.005) << i;
+    EXPECT_NEAR(out[L.at(i, 40)], out[L.at(0, 40)], 1e-12);
   }
-  std::printf("spike: largest relative error %.3g, integral %.6g of V a_q\n", worst, total / V);
-  EXPECT_LT(worst, 1.1e-3);
-  EXPECT_NEAR(total, V, 1.1e-3 * V);
 }
 
-// At an edge a spike's neighbours further in have fuller weight sums than
-// it has (their discs lie more inside the body), so they take a smaller
-// share of it: the average loses part of the integral there. The symmetric
-// normalisation of Borino, Failla & Parrinello (2003) would keep it, at the
-// price of no longer keeping a uniform field uniform near edges. Measured:
-// 0.77 of the spike's integral is left at the middle of an edge.
-TEST(NonlocalAverage, AtAnEdgeTheSpikeLosesPartOfItsIntegral) {
-  const double l = 0.83;
-  const Lattice L(81, 81, 0.2);
-  NonlocalAverage avg({l});
+TEST(NonlocalAverage, OnlyRegularisedMaterialsAndOnlyTheirOwnParticles) {
+  Lattice L(40, 40, 0.05);
+  for (int p = 0; p < L.size(); ++p) L.material[p] = L.x[p] < 1.0 ? 0 : 1;
+  NonlocalAverage avg({Regularisation{0.3, 0.1}, Regularisation{}});
   std::vector<double> in(L.size(), 0.0), out(L.size());
-  const int q = L.nx / 2;  // middle of the bottom row
-  in[q] = 1.0;
+  for (int j = 0; j < L.ny; ++j) in[L.at(25, j)] = 1.0;  // a band in material 1
   avg.apply(L.points(), in.data(), out.data());
-  double total = 0;
-  for (int p = 0; p < L.size(); ++p) total += L.vol[p] * out[p];
-  std::printf("spike at the edge: integral %.3g of V a_q\n", total / L.vol[q]);
-  EXPECT_LT(total, 0.9 * L.vol[q]);
-}
-
-// Particles of another material, or of one without a length, are neither
-// averaged nor averaged over.
-TEST(NonlocalAverage, OnlyParticlesOfTheSameMaterialAverage) {
-  Lattice L(20, 20, 0.25);
-  for (int p = 0; p < L.size(); ++p) L.material[p] = L.x[p] < 0.0 ? 0 : 1;
-  NonlocalAverage avg({0.5, 0.0});
-  std::vector<double> in(L.size()), out(L.size());
-  for (int p = 0; p < L.size(); ++p) in[p] = L.material[p] == 0 ? 2.0 : 5.0 + p;
-  avg.apply(L.points(), in.data(), out.data());
-  for (int p = 0; p < L.size(); ++p) EXPECT_EQ(out[p], in[p]) << p;
+  for (int p = 0; p < L.size(); ++p) {
+    if (L.material[p] == 0) EXPECT_EQ(out[p], 0.0) << p;
+    else EXPECT_EQ(out[p], in[p]) << p;
+  }
 }
 
 TEST(NonlocalAverage, TheSameBitsOnOneAndTwoThreads) {
-  const Lattice L(120, 60, 0.1);  // above the size that runs in parallel
-  NonlocalAverage avg({0.3});
+  const Lattice L(240, 120, 0.05);  // above the size that runs in parallel
+  NonlocalAverage avg({Regularisation{0.3, 0.1}});
   std::vector<double> in(L.size()), one(L.size()), two(L.size());
-  for (int p = 0; p < L.size(); ++p) in[p] = std::sin(0.37 * p) * std::sin(0.11 * p);
+  for (int p = 0; p < L.size(); ++p) in[p] = std::fabs(std::sin(0.37 * p) * std::sin(0.11 * p));
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   avg.apply(L.points(), in.data(), one.data());
@@ -153,19 +165,218 @@ TEST(NonlocalAverage, TheSameBitsOnOneAndTwoThreads) {
 
 namespace {
 
-// A smaller case 4 slide: the case 4 clay (St = 40, xi95 = 5, su0 = 5 kPa)
-// and interface (tau = 1 kPa) on the 2-degree slope, a trapezoid 24 m long
-// and 5 m high with 30-degree faces, nu = 0.3 for a longer time step,
-// 2 x 2 particles per cell. Returns the runout at t = 12 s, well before
-// rest but after the spreading has set the front going.
-double small_case4_runout(double h, double nonlocal_length) {
+// The clay of the simple-shear column: the case 4 clay (su0 = 5 kPa, St =
+// 40, xi95 = 5, E = 100 su0, no rate effect) with nu = 0.3 for a longer
+// time step; a band 5 cm thick, so delta95 = 0.25 m.
+constexpr double kSu0 = 5000, kE = 5e5, kNu = 0.3, kRho = 600, kSt = 40, kXi95 = 5;
+constexpr double kG = kE / (2 * (1 + kNu));
+constexpr double kH = 1.0, kWidth = 0.4, kTs = 0.05;  // column height, width; band thickness
+constexpr double kSpeed = 0.1, kRamp = 0.5, kEndDisplacement = 0.4;
+// The imperfection where the band starts: clay softened in advance in a
+// layer about kSeedWidth thick at mid-height (a property of the clay, the
+// same on every mesh), so that the band forms at the peak, as the analytic
+// curve assumes, instead of after a stretch of diffuse yield.
+constexpr double kSeedXi = 0.1, kSeedWidth = 0.05;
+double seed_xi(double y) { return kSeedXi * std::exp(-std::pow((y - 0.5 * kH) / kSeedWidth, 2)); }
+
+struct ShearCurve {
+  std::vector<double> u, tau;  // the column's shear displacement [m], its shear stress [Pa]
+};
+
+// A periodic column of clay kH high on a no-slip base, under an elastic
+// plate driven along x at kSpeed (reached by a linear ramp over kRamp s):
+// the plate's particles are given that velocity before every step. The
+// column's shear displacement is the integral of F_xy over the clay's
+// initial volume per unit width (what the plate's travel is, less any slip
+// at the plate and the base), its shear stress the clay's volume-weighted
+// mean sxy. t_s 0: local softening.
+ShearCurve simple_shear(double h, int ppc, double t_s, double l) {
+  const double plate = 2 * h;
+  Scene s = fixtures::block_scene({0.0, 0.0}, {kWidth, kH}, {0.0, 0.0}, {kWidth, kH + 0.5}, h, ppc,
+                                  kRho, kE, kNu);
+  s.boundary.left = s.boundary.right = BoundaryKind::Periodic;
+  s.base.kind = BaseKind::Planar;
+  s.base.interface = InterfaceKind::NoSlip;
+  s.materials.push_back(s.materials[0]);  // the plate's, elastic
+  s.materials[1].name = "plate";
+  MaterialSpec& clay = s.materials[0];
+  clay.model = MaterialModel::Tresca;
+  clay.su0 = kSu0;
+  clay.sensitivity = kSt;
+  clay.xi95 = kXi95;
+  clay.band_thickness = t_s;
+  clay.nonlocal_length = t_s > 0.0 ? l : 0.0;
+  BodySpec top = s.bodies[0];
+  top.name = "plate";
+  top.material = 1;
+  top.polygon = {{0.0, kH}, {kWidth, kH}, {kWidth, kH + plate}, {0.0, kH + plate}};
+  s.bodies.push_back(top);
+
+  Simulation sim(s);
+  Particles& start = sim.particles();
+  for (int p = 0; p < start.size(); ++p)
+    if (start.material[p] == 0) start.xi[p] = seed_xi(start.y[p]);
+  ShearCurve curve;
+  constexpr double kSample = 0.01;  // [s]
+  for (double u = 0; u < kEndDisplacement + 0.01;) {
+    const double t_next = sim.time() + kSample;
+    while (sim.time() < t_next - 1e-12) {
+      const double speed = kSpeed * std::min(1.0, sim.time() / kRamp);
+      Particles& P = sim.particles();
+      for (int p = 0; p < P.size(); ++p)
+        if (P.material[p] == 1) {
+          P.vx[p] = speed;
+          P.vy[p] = 0.0;
+        }
+      sim.step(std::min(sim.stable_dt(), t_next - sim.time()));
+    }
+    const Particles& P = sim.particles();
+    double stress = 0, vol = 0, shear = 0;
+    for (int p = 0; p < P.size(); ++p)
+      if (P.material[p] == 0) {
+        stress += P.vol[p] * P.sxy[p];
+        vol += P.vol[p];
+        shear += P.vol0[p] * P.fxy[p];
+      }
+    u = shear / kWidth;
+    curve.u.push_back(u);
+    curve.tau.push_back(stress / vol);
+  }
+  return curve;
+}
+
+// The analytic curve of a band of thickness t_s through the seed in a
+// column that is elastic elsewhere: u = tau H / G + delta(tau), where past
+// the peak tau = su0 S(xi_seed + delta / t_s) (strength.hpp), so
+// delta = -t_s ((xi95 / 3) ln((tau / su0 - d) / (1 - d)) + xi_seed);
+// before it tau = G u / H.
+double analytic_tau(double u, double t_s) {
+  const double d = 1 / kSt;
+  const double peak = kSu0 * (d + (1 - d) * std::exp(-3 * kSeedXi / kXi95));
+  if (u <= peak * kH / kG) return kG * u / kH;
+  double lo = d * kSu0, hi = peak;  // u(tau) falls as tau rises: bisect
+  for (int it = 0; it < 100; ++it) {
+    const double tau = 0.5 * (lo + hi);
+    const double delta = -t_s * ((kXi95 / 3) * std::log((tau / kSu0 - d) / (1 - d)) + kSeedXi);
+    (tau * kH / kG + delta > u ? lo : hi) = tau;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The plastic displacement delta = u - tau H / G at the end of a curve.
+double plastic_displacement(const ShearCurve& c) { return c.u.back() - c.tau.back() * kH / kG; }
+
+// The work of the shear stress on the plastic displacement, per unit area
+// of band [J/m2], and its analytic value past the seed:
+// su0 t_s (d x + (1 - d) (xi95 / 3) e^(-3 xi_seed / xi95) (1 - e^(-3 x / xi95))),
+// x = delta / t_s.
+double softening_work(const ShearCurve& c) {
+  double work = 0;
+  for (std::size_t k = 1; k < c.u.size(); ++k) {
+    const double d0 = c.u[k - 1] - c.tau[k - 1] * kH / kG, d1 = c.u[k] - c.tau[k] * kH / kG;
+    work += 0.5 * (c.tau[k - 1] + c.tau[k]) * (d1 - d0);
+  }
+  return work;
+}
+double analytic_work(double delta, double t_s) {
+  const double d = 1 / kSt, x = delta / t_s;
+  return kSu0 * t_s *
+         (d * x + (1 - d) * (kXi95 / 3) * std::exp(-3 * kSeedXi / kXi95) *
+                      (1 - std::exp(-3 * x / kXi95)));
+}
+
+double tau_at(const ShearCurve& c, double u) {
+  for (std::size_t k = 1; k < c.u.size(); ++k)
+    if (c.u[k] >= u)
+      return c.tau[k - 1] + (c.tau[k] - c.tau[k - 1]) * (u - c.u[k - 1]) / (c.u[k] - c.u[k - 1]);
+  return c.tau.back();
+}
+
+// Once the band has formed (u from 0.1 m, four times the elastic
+// displacement at the peak, to the end): the largest |tau_a(u) - tau_b(u)|
+// over su0.
+template <class Reference>
+double largest_gap(const ShearCurve& c, Reference reference) {
+  double worst = 0;
+  for (double u = 0.1; u <= kEndDisplacement; u += 0.005)
+    worst = std::max(worst, std::fabs(tau_at(c, u) - reference(u)));
+  return worst / kSu0;
+}
+
+}  // namespace
+
+// The curves of three cells, two particle counts and two lengths lie
+// within 3 % of su0 of each other and of the analytic curve once the band
+// has formed (measured: within 2.2 %), and dissipate the analytic work
+// within 5 % (measured: 2.7 to 4.9 % above it, most of it as the band
+// forms, over the first centimetres past the peak, at a stress above the
+// analytic curve's).
+TEST(Regularisation, SimpleShearFollowsTheBandOfThicknessTs) {
+  struct Run {
+    double h;
+    int ppc;
+    double l;
+  };
+  const std::vector<Run> runs = {{0.1, 2, 0.3}, {0.05, 2, 0.15}, {0.025, 2, 0.075},
+                                 {0.05, 3, 0.15}, {0.05, 2, 0.25}};
+  const auto analytic = [](double u) { return analytic_tau(u, kTs); };
+  std::vector<ShearCurve> curves;
+  for (const Run& r : runs) {
+    const ShearCurve c = simple_shear(r.h, r.ppc, kTs, r.l);
+    const double work = softening_work(c), expected = analytic_work(plastic_displacement(c), kTs);
+    std::printf("h %.3f ppc %d l %.3f: tau/su0 at u 0.1, 0.2, 0.3, 0.4 m: %.4f %.4f %.4f %.4f "
+                "(analytic %.4f %.4f %.4f %.4f), largest gap %.4f su0, work %.1f J/m2 "
+                "(analytic %.1f)\n",
+                r.h, r.ppc, r.l, tau_at(c, 0.1) / kSu0, tau_at(c, 0.2) / kSu0,
+                tau_at(c, 0.3) / kSu0, tau_at(c, 0.4) / kSu0, analytic(0.1) / kSu0,
+                analytic(0.2) / kSu0, analytic(0.3) / kSu0, analytic(0.4) / kSu0,
+                largest_gap(c, analytic), work, expected);
+    EXPECT_LT(largest_gap(c, analytic), 0.03);
+    EXPECT_NEAR(work / expected, 1.0, 0.05);
+    curves.push_back(c);
+  }
+  for (std::size_t a = 0; a < curves.size(); ++a)
+    for (std::size_t b = a + 1; b < curves.size(); ++b)
+      EXPECT_LT(largest_gap(curves[a], [&](double u) { return tau_at(curves[b], u); }), 0.03)
+          << a << " " << b;
+}
+
+// The local law on the same three cells: its band is about one cell thick,
+// so it remoulds after a displacement proportional to the cell (measured:
+// tau/su0 at u = 0.1 m 0.62, 0.36, 0.13; the work 2.0, 1.0 and 0.5 times
+// that of a 5 cm band).
+TEST(Regularisation, LocalSofteningInSimpleShearDependsOnTheCell) {
+  std::vector<ShearCurve> curves;
+  std::vector<double> works;
+  for (double h : {0.1, 0.05, 0.025}) {
+    curves.push_back(simple_shear(h, 2, 0.0, 0.0));
+    const ShearCurve& c = curves.back();
+    works.push_back(softening_work(c));
+    std::printf("local h %.3f: tau/su0 at u 0.1, 0.2, 0.3, 0.4 m: %.4f %.4f %.4f %.4f, work %.1f "
+                "J/m2\n",
+                h, tau_at(c, 0.1) / kSu0, tau_at(c, 0.2) / kSu0, tau_at(c, 0.3) / kSu0,
+                tau_at(c, 0.4) / kSu0, works.back());
+  }
+  EXPECT_GT(largest_gap(curves[0], [&](double u) { return tau_at(curves[2], u); }), 0.2);
+  EXPECT_GT(works[0] / works[2], 1.5);
+}
+
+namespace {
+
+// A smaller case 4 slide: the case 4 clay (St = 40, xi95 = 5, su0 = 5 kPa,
+// the scene's t_s) and interface (tau = 1 kPa) on the 2-degree slope, a
+// trapezoid 24 m long and 5 m high with 30-degree faces, nu = 0.3 for a
+// longer time step. Returns the runout at t = 12 s, well before rest but
+// after the spreading has set the front going. t_s 0: local softening.
+double small_case4_runout(double h, int ppc, double t_s, double l) {
   Scene s = load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/case4_spreading.toml");
   s.grid.max.x() = 80.0;
   s.materials[0].poisson_ratio = 0.3;
-  s.materials[0].nonlocal_length = nonlocal_length;
+  s.materials[0].band_thickness = t_s;
+  s.materials[0].nonlocal_length = t_s > 0.0 ? l : 0.0;
   const double top = 5.0 / std::tan(30.0 * kPi / 180.0);
   s.bodies[0].polygon = {{0.0, 0.0}, {24.0, 0.0}, {24.0 - top, 5.0}, {top, 5.0}};
-  apply_overrides(s, h, 2);
+  apply_overrides(s, h, ppc);
   Simulation sim(s);
   const BaseView base = sim.base().view();
   const double spacing = sim.particle_spacing();
@@ -183,24 +394,36 @@ double spread(const std::vector<double>& v) {
 
 }  // namespace
 
-// The plain runouts grow with refinement (measured 19.7, 22.9, 24.2 m:
-// 21 % spread), as bands two cells thick soften after less displacement.
-// l = 1.5 m, twice the coarsest cell, spreads each plastic increment over a
-// few l on all three meshes, so a band's thickness is set by l and not by h
-// (measured 18.2, 19.1, 19.6 m: 7 %; still growing with refinement, by
-// 0.9 m and then 0.4 m).
-TEST(Regularisation, NonlocalSofteningMakesTheRunoutMeshIndependent) {
-  const std::vector<double> cells = {0.75, 0.5, 0.375};
-  const double l = 2.0 * cells[0];
-  std::vector<double> plain, nonlocal;
+// Regularised (t_s of the scene): three cells with 2 x 2 particles and l
+// of three cells, then l of 4.5 cells at the middle cell: runouts within
+// 5 % of each other (measured 38.16, 37.52, 37.10 and 37.28 m). The local
+// law on the same cells runs out far less (24.4, 26.9, 26.8 m): its bands,
+// a cell or two thick, need about ten times the displacement of a 0.1 m
+// band to remould. 3 x 3 particles at the middle cell run 12 % further
+// (41.96 m; the local law 3 %): printed, not asserted, as the open part of
+// docs/strength.md, "What is not converged".
+TEST(Regularisation, ASmallSlideRunsAsFarOnEveryCellAndLength) {
+  const double t_s =
+      load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/case4_spreading.toml")
+          .materials[0]
+          .band_thickness;
+  ASSERT_GT(t_s, 0.0);
+  const std::vector<double> cells = {0.5, 0.35, 0.25};
+  std::vector<double> regularised, local;
   for (double h : cells) {
-    plain.push_back(small_case4_runout(h, 0.0));
-    nonlocal.push_back(small_case4_runout(h, l));
-    std::printf("h = %.3f m: runout plain %.2f m, nonlocal (l = %.2f m) %.2f m\n", h,
-                plain.back(), l, nonlocal.back());
+    regularised.push_back(small_case4_runout(h, 2, t_s, kRegularisationCells * h));
+    local.push_back(small_case4_runout(h, 2, 0.0, 0.0));
+    std::printf("h = %.3f m, 2 x 2: runout regularised %.2f m, local %.2f m\n", h,
+                regularised.back(), local.back());
   }
-  std::printf("spread (max - min) / mean: plain %.3f, nonlocal %.3f\n", spread(plain),
-              spread(nonlocal));
-  EXPECT_GT(spread(plain), 0.10);
-  EXPECT_LT(spread(nonlocal), 0.10);
+  const double l = 1.5 * kRegularisationCells * cells[1];
+  regularised.push_back(small_case4_runout(cells[1], 2, t_s, l));
+  std::printf("h = %.3f m, 2 x 2, l = %.3f m: regularised %.2f m\n", cells[1], l,
+              regularised.back());
+  std::printf("h = %.3f m, 3 x 3: regularised %.2f m\n", cells[1],
+              small_case4_runout(cells[1], 3, t_s, kRegularisationCells * cells[1]));
+  std::printf("spread (max - min) / mean: regularised %.3f, local %.3f\n", spread(regularised),
+              spread(local));
+  EXPECT_LT(spread(regularised), 0.05);
+  for (std::size_t k = 0; k < cells.size(); ++k) EXPECT_GT(regularised[k], 1.25 * local[k]);
 }

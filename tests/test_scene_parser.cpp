@@ -164,7 +164,8 @@ TEST(SceneParser, TrescaMaterialTakesDefaults) {
   EXPECT_EQ(m.rate_exponent, 0.1);
   EXPECT_EQ(m.reference_rate, 1.0);
   EXPECT_EQ(m.strength_form, StrengthForm::Multiplicative);
-  EXPECT_EQ(m.nonlocal_length, 0.0);  // local softening
+  EXPECT_EQ(m.band_thickness, 0.0);  // local softening
+  EXPECT_EQ(m.nonlocal_length, 0.0);
   EXPECT_EQ(m.youngs_modulus, 1.0e5);
 }
 
@@ -173,9 +174,11 @@ TEST(SceneParser, TrescaMaterialEveryKey) {
       replace_lines(18, 18, std::string(kTrescaClay) +
                                 "\nsensitivity = 40\nxi95 = 45\neta = 0.0167\n"
                                 "rate_exponent = 0.5\nreference_rate = 0.01\n"
-                                "strength_form = \"additive\"\nnonlocal_length = 1.5"),
+                                "strength_form = \"additive\"\nband_thickness = 0.3\n"
+                                "nonlocal_length = 1.5"),
       "tresca.toml");
   const MaterialSpec& m = s.materials[0];
+  EXPECT_EQ(m.band_thickness, 0.3);
   EXPECT_EQ(m.nonlocal_length, 1.5);
   EXPECT_EQ(m.sensitivity, 40.0);
   EXPECT_EQ(m.xi95, 45.0);
@@ -379,8 +382,14 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"Xi95Zero", 18, 18, std::string(kTrescaClay) + "\nxi95 = 0", 21,
                   "material[0].xi95", "must be > 0 (got 0)"},
         ErrorCase{"NonlocalLengthZero", 18, 18,
-                  std::string(kTrescaClay) + "\nnonlocal_length = 0", 21,
+                  std::string(kTrescaClay) + "\nband_thickness = 0.1\nnonlocal_length = 0", 22,
                   "material[0].nonlocal_length", "must be > 0 (got 0)"},
+        ErrorCase{"NonlocalLengthWithoutBandThickness", 18, 18,
+                  std::string(kTrescaClay) + "\nnonlocal_length = 1", 21,
+                  "material[0].nonlocal_length", "band_thickness"},
+        ErrorCase{"BandThicknessNegative", 18, 18,
+                  std::string(kTrescaClay) + "\nband_thickness = -0.1", 21,
+                  "material[0].band_thickness", "must be > 0 (got -0.1)"},
         ErrorCase{"NonlocalLengthOnElastic", 18, 18, "poisson_ratio = 0.3\nnonlocal_length = 1", 19,
                   "material[0].nonlocal_length", "unknown key"},
         ErrorCase{"NegativeEta", 18, 18, std::string(kTrescaClay) + "\neta = -0.1", 21,
@@ -439,12 +448,7 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"PeriodicOnAPolyline", 25, 25,
                   "max = [3.0, 2.0]\n[base]\nkind = \"polyline\"\npoints = [[0, 1], [10, 0]]\n"
                   "[boundary]\nleft = \"periodic\"\nright = \"periodic\"",
-                  30, "boundary.left", "needs a planar base or none"},
-        ErrorCase{"PeriodicWithNonlocalSoftening", 13, 18,
-                  "[boundary]\nleft = \"periodic\"\nright = \"periodic\"\n\n[[material]]\n"
-                  "name = \"clay\"\nmodel = \"tresca\"\ndensity = 600.0\n"
-                  "youngs_modulus = 1.0e5\npoisson_ratio = 0.3\nsu0 = 1000\nnonlocal_length = 0.5",
-                  14, "boundary.left", "does not take nonlocal softening"}),
+                  30, "boundary.left", "needs a planar base or none"}),
     [](const ::testing::TestParamInfo<ErrorCase>& info) { return std::string(info.param.name); });
 
 TEST(SceneParser, MissingFileHasNoLine) {
@@ -512,6 +516,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.materials[i].rate_exponent, b.materials[i].rate_exponent);
     EXPECT_EQ(a.materials[i].reference_rate, b.materials[i].reference_rate);
     EXPECT_EQ(a.materials[i].strength_form, b.materials[i].strength_form);
+    EXPECT_EQ(a.materials[i].band_thickness, b.materials[i].band_thickness);
     EXPECT_EQ(a.materials[i].nonlocal_length, b.materials[i].nonlocal_length);
   }
   ASSERT_EQ(a.bodies.size(), b.bodies.size());
@@ -553,7 +558,7 @@ TEST(SceneWriter, EveryNonDefaultValueRoundTrips) {
       "[[material]]\nname = \"a\"\ndensity = 525\nyoungs_modulus = 1.5e6\npoisson_ratio = -0.2\n"
       "model = \"tresca\"\nsu0 = 15e3\nsensitivity = 40\nxi95 = 45\neta = 0.0167\n"
       "rate_exponent = 0.5\nreference_rate = 0.3\nstrength_form = \"additive\"\n"
-      "nonlocal_length = 0.07\n"
+      "band_thickness = 0.03\nnonlocal_length = 0.07\n"
       "[[material]]\nname = \"b\"\ndensity = 2000.5\nyoungs_modulus = 3e7\npoisson_ratio = 0.1\n"
       "[[body]]\nname = \"t\"\nmaterial = \"b\"\ntype = \"trapezoid\"\n"
       "base_start = [0.1, 0.8]\nbase_length = 5.3\nheight = 1.1\n"

@@ -7,140 +7,221 @@
 namespace runout {
 namespace {
 
-// As the MPM driver: below this a parallel region costs more than it saves
-// (on a machine shared with other jobs, far more).
+// As the MPM driver: below this a parallel region costs more than it saves.
 constexpr int kParallelMin = 4096;
+constexpr double kPi = 3.14159265358979323846;
 
-// Distance from v to the interval [lo, lo + width] (0 inside).
-double gap(double v, double lo, double width) {
-  return std::max({lo - v, v - (lo + width), 0.0});
+// Quadratic B-spline weights of the nodes base - 1, base, base + 1 for a
+// point at u lattice spacings from node 0, base the nearest node (de Boor;
+// the weights sum to 1 and reproduce the point's first and second moments).
+struct Spline {
+  int base;
+  double w[3];
+};
+Spline spline(double u) {
+  const int base = static_cast<int>(std::floor(u + 0.5));
+  const double t = u - base;  // in [-1/2, 1/2)
+  return {base, {0.5 * (0.5 - t) * (0.5 - t), 0.75 - t * t, 0.5 * (0.5 + t) * (0.5 + t)}};
+}
+
+std::vector<double> gaussian_taps(double spacing, double length) {
+  const int reach = static_cast<int>(std::ceil(kNonlocalCutoff * length / spacing));
+  std::vector<double> taps(reach + 1);
+  for (int k = 0; k <= reach; ++k) {
+    const double r = k * spacing / length;
+    taps[k] = std::exp(-r * r);
+  }
+  return taps;
+}
+
+// K_line of the lattice along one axis: spacing times the sum of the taps.
+double line_integral(double spacing, const std::vector<double>& taps) {
+  double sum = taps[0];
+  for (std::size_t k = 1; k < taps.size(); ++k) sum += 2.0 * taps[k];
+  return spacing * sum;
+}
+
+// The increment of a particle whose own increment is a and whose band
+// carries delta / t_s = band: b = delta / a is the width of the zone that
+// yields around it, measured. A band (b up to half the averaging width
+// sqrt(pi) l) remoulds by delta / t_s; a zone as wide as the average or
+// wider is diffuse yield, which no band concentrates, and remoulds by its
+// own strain a; between the two, a linear blend.
+double localised_increment(double a, double band, double t_s, double l) {
+  if (a <= 0.0) return 0.0;
+  const double x = band * t_s / (a * std::sqrt(kPi) * l);  // b / (sqrt(pi) l)
+  const double phi = std::clamp(2.0 * (1.0 - x), 0.0, 1.0);
+  return phi * band + (1.0 - phi) * a;
 }
 
 }  // namespace
 
-NonlocalAverage::NonlocalAverage(std::vector<double> lengths) : lengths_(std::move(lengths)) {
-  for (double l : lengths_) active_ = active_ || l > 0.0;
+NonlocalAverage::NonlocalAverage(std::vector<Regularisation> materials, double period, double x0,
+                                 BaseView mirror)
+    : materials_(std::move(materials)), period_(period), x0_(x0), mirror_(mirror) {
+  for (const auto& m : materials_) active_ = active_ || m.length > 0.0;
 }
 
-// Bins of side l / kNonlocalBinsPerLength over the material's particles;
-// but never so small that there are more bins than particles (a length far
-// below the particle spacing would otherwise ask for bins by the billion):
-// bin^2 >= area / n and bin >= extent / n. Sums in particle order.
-void NonlocalAverage::aggregate(const NonlocalPoints& P, const double* in, int material) {
-  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
-  double xmax = -xmin, ymax = -xmin;
-  int n = 0;
-  for (int p = 0; p < P.n; ++p) {
-    if (P.material[p] != material) continue;
-    xmin = std::min(xmin, P.x[p]);
-    xmax = std::max(xmax, P.x[p]);
-    ymin = std::min(ymin, P.y[p]);
-    ymax = std::max(ymax, P.y[p]);
-    ++n;
-  }
-  if (n == 0) return;
-  const double width = xmax - xmin, height = ymax - ymin;
-  bin_ = std::max({lengths_[material] / kNonlocalBinsPerLength, std::sqrt(width * height / n),
-                   std::max(width, height) / n});
-  x0_ = xmin;
-  y0_ = ymin;
-  bins_x_ = static_cast<int>(width / bin_) + 1;
-  bins_y_ = static_cast<int>(height / bin_) + 1;
-  bins_.assign(static_cast<std::size_t>(bins_x_) * bins_y_, Bin{});
-  // Moments about the bin's corner, where they are well conditioned.
-  for (int p = 0; p < P.n; ++p) {
-    if (P.material[p] != material) continue;
-    const int k = bin_index(P.x[p], P.y[p]);
-    const double u = P.x[p] - (x0_ + (k % bins_x_) * bin_);
-    const double v = P.y[p] - (y0_ + (k / bins_x_) * bin_);
-    bins_[k].vol.add(P.vol[p], u, v);
-    bins_[k].sum.add(P.vol[p] * in[p], u, v);
-  }
-  for (int k = 0; k < static_cast<int>(bins_.size()); ++k) {
-    const double cx = x0_ + (k % bins_x_) * bin_, cy = y0_ + (k / bins_x_) * bin_;
-    bins_[k].vol.centre(cx, cy);
-    bins_[k].sum.centre(cx, cy);
-  }
+// sum_j N_j(s) sum_i w((j - i) d) N_i(s) with d = spacing / l: the centre
+// value of a thin band through s after spreading, convolving and taking back.
+double NonlocalAverage::band_peak(double spacing_over_length, double s) {
+  const Spline sp = spline(s);
+  double peak = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const double r = (a - b) * spacing_over_length;
+      peak += sp.w[a] * sp.w[b] * std::exp(-r * r);
+    }
+  return peak;
 }
 
-void NonlocalAverage::Moments::add(double m, double u, double v) {
-  mass += m;
-  x += m * u;
-  y += m * v;
-  xx += m * u * u;
-  xy += m * u * v;
-  yy += m * v * v;
+int NonlocalAverage::Axis::node(int i) const {
+  if (wrap > 0) return ((i % wrap) + wrap) % wrap;
+  return i - first;
 }
 
-// From sums about the corner (cx, cy) to the centroid and the central
-// second moments.
-void NonlocalAverage::Moments::centre(double cx, double cy) {
-  if (mass <= 0.0) return;
-  const double u = x / mass, v = y / mass;
-  xx -= mass * u * u;
-  xy -= mass * u * v;
-  yy -= mass * v * v;
-  x = cx + u;
-  y = cy + v;
-}
-
-// sum over the bin's points of m_q w(x_q - (x, y)), by the Taylor expansion
-// of w about the centroid c to second order: with d = c - (x, y) and M the
-// central second moments, the Hessian of w = exp(-|d|^2 / l^2) is
-// w (4 d d^T / l^4 - 2 I / l^2), so the sum is
-//   w(d) (m + 2 d.M.d / l^4 - tr M / l^2) + O(bin^3 / l^3).
-// The first-order term vanishes about the centroid.
-double NonlocalAverage::Moments::weighted(double px, double py, double inv_l2) const {
-  const double dx = x - px, dy = y - py;
-  const double w = std::exp(-(dx * dx + dy * dy) * inv_l2);
-  const double dMd = dx * dx * xx + 2.0 * dx * dy * xy + dy * dy * yy;
-  return w * (mass + 2.0 * dMd * inv_l2 * inv_l2 - (xx + yy) * inv_l2);
-}
-
-int NonlocalAverage::bin_index(double x, double y) const {
-  const int i = std::min(static_cast<int>((x - x0_) / bin_), bins_x_ - 1);
-  const int j = std::min(static_cast<int>((y - y0_) / bin_), bins_y_ - 1);
-  return j * bins_x_ + i;
-}
-
-double NonlocalAverage::average_at(double x, double y, double l, double own_value) const {
-  const double cutoff = kNonlocalCutoff * l;
-  const double cutoff2 = cutoff * cutoff, inv_l2 = 1.0 / (l * l);
-  const int reach = static_cast<int>(std::ceil(cutoff / bin_));
-  const int own = bin_index(x, y);
-  const int bi = own % bins_x_, bj = own / bins_x_;
-  double sum = 0, weight_sum = 0;
-  for (int j = std::max(bj - reach, 0); j <= std::min(bj + reach, bins_y_ - 1); ++j) {
-    const double gy = gap(y, y0_ + j * bin_, bin_);
-    for (int i = std::max(bi - reach, 0); i <= std::min(bi + reach, bins_x_ - 1); ++i) {
-      const double gx = gap(x, x0_ + i * bin_, bin_);
-      if (gx * gx + gy * gy > cutoff2) continue;  // the whole bin is beyond the cut-off
-      const Bin& b = bins_[j * bins_x_ + i];
-      if (b.vol.mass == 0.0) continue;
-      // A bin is in or out as a whole, by its volume centroid, so that a
-      // uniform field, whose two centroids differ by rounding, stays uniform.
-      const double dx = b.vol.x - x, dy = b.vol.y - y;
-      if (dx * dx + dy * dy > cutoff2) continue;
-      weight_sum += b.vol.weighted(x, y, inv_l2);
-      if (b.sum.mass > 0.0) sum += b.sum.weighted(x, y, inv_l2);
+// field (ay.count rows of ax.count) convolved with the taps along x into
+// pass_, then along y back into field; rows and columns are independent,
+// so the threads split them without changing a sum's order.
+void NonlocalAverage::convolve(std::vector<double>& field, const Axis& ax, const Axis& ay) {
+  const int nx = ax.count, ny = ay.count;
+  const int rx = static_cast<int>(ax.taps.size()) - 1, ry = static_cast<int>(ay.taps.size()) - 1;
+  pass_.assign(field.size(), 0.0);
+#pragma omp parallel for schedule(static) if (nx * ny > kParallelMin)
+  for (int j = 0; j < ny; ++j) {
+    const double* in = field.data() + static_cast<std::size_t>(j) * nx;
+    double* out = pass_.data() + static_cast<std::size_t>(j) * nx;
+    for (int i = 0; i < nx; ++i) {
+      const double v = in[i];
+      if (v == 0.0) continue;  // most of a slide's bounding box is empty
+      for (int k = -rx; k <= rx; ++k) {
+        int t = i + k;
+        if (ax.wrap > 0) t = ((t % nx) + nx) % nx;
+        else if (t < 0 || t >= nx) continue;
+        out[t] += ax.taps[std::abs(k)] * v;
+      }
     }
   }
-  // The own bin's centroid is within reach unless the bins had to be made
-  // larger than the cut-off (a length far below the particle spacing):
-  // then there is nothing to average with.
-  return weight_sum > 0.0 ? sum / weight_sum : own_value;
+  std::fill(field.begin(), field.end(), 0.0);
+#pragma omp parallel for schedule(static) if (nx * ny > kParallelMin)
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j) {
+      const double v = pass_[static_cast<std::size_t>(j) * nx + i];
+      if (v == 0.0) continue;
+      for (int k = std::max(-ry, -j); k <= std::min(ry, ny - 1 - j); ++k)
+        field[static_cast<std::size_t>(j + k) * nx + i] += ay.taps[std::abs(k)] * v;
+    }
+}
+
+// The lattice over the points' box and the kernel's reach; along x the
+// period where the scene is periodic (a whole number of spacings, so the
+// lattice closes on itself).
+void NonlocalAverage::fit_lattice(double l, double xmin, double xmax, double ymin, double ymax) {
+  ay_ = Axis{};
+  ay_.spacing = l / kLatticePerLength;
+  ay_.taps = gaussian_taps(ay_.spacing, l);
+  const int reach = static_cast<int>(ay_.taps.size()) - 1;
+  ay_.first = static_cast<int>(std::floor(ymin / ay_.spacing + 0.5)) - 1 - reach;
+  ay_.count = static_cast<int>(std::floor(ymax / ay_.spacing + 0.5)) + 2 + reach - ay_.first;
+  ax_ = Axis{};
+  if (period_ > 0.0) {
+    ax_.wrap = std::max(1, static_cast<int>(std::ceil(period_ / ay_.spacing)));
+    ax_.spacing = period_ / ax_.wrap;
+    ax_.count = ax_.wrap;
+    ax_.taps = gaussian_taps(ax_.spacing, l);
+  } else {
+    ax_.spacing = ay_.spacing;
+    ax_.taps = ay_.taps;
+    ax_.first = static_cast<int>(std::floor(xmin / ax_.spacing + 0.5)) - 1 - reach;
+    ax_.count = static_cast<int>(std::floor(xmax / ax_.spacing + 0.5)) + 2 + reach - ax_.first;
+  }
+  const std::size_t size = static_cast<std::size_t>(ax_.count) * ay_.count;
+  increments_.assign(size, 0.0);
+  volumes_.assign(size, 0.0);
+}
+
+template <class F>
+void NonlocalAverage::for_nodes(double x, double y, F&& f) const {
+  const Spline sx = spline((x - (period_ > 0.0 ? x0_ : 0.0)) / ax_.spacing);
+  const Spline sy = spline(y / ay_.spacing);
+  for (int b = 0; b < 3; ++b) {
+    const std::size_t row = static_cast<std::size_t>(ay_.node(sy.base - 1 + b)) * ax_.count;
+    for (int a = 0; a < 3; ++a) f(row + ax_.node(sx.base - 1 + a), sy.w[b] * sx.w[a]);
+  }
+}
+
+// Where p's image across a no-slip base lies, if within the kernel's
+// reach: a band along such a base keeps the whole kernel across it (the
+// images' volume, not their increments, enters the weights).
+bool NonlocalAverage::mirror_point(double x, double y, double reach, double& mx,
+                                   double& my) const {
+  if (mirror_.kind == BaseKind::None) return false;
+  const BasePoint b = locate_on_base(mirror_, x, y);
+  if (b.d < 0.0 || b.d > reach) return false;
+  mx = x - 2.0 * b.d * b.nx;
+  my = y - 2.0 * b.d * b.ny;
+  return true;
+}
+
+void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in, double* out,
+                                       int material) {
+  const Regularisation& reg = materials_[material];
+  const double l = reg.length, reach = kNonlocalCutoff * l;
+  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, xmax = -xmin, ymax = -xmin;
+  const auto extend = [&](double x, double y) {
+    xmin = std::min(xmin, x);
+    xmax = std::max(xmax, x);
+    ymin = std::min(ymin, y);
+    ymax = std::max(ymax, y);
+  };
+  for (int p = 0; p < P.n; ++p) {
+    if (P.material[p] != material) continue;
+    extend(P.x[p], P.y[p]);
+    double mx, my;
+    if (mirror_point(P.x[p], P.y[p], reach, mx, my)) extend(mx, my);
+  }
+  if (!(xmin <= xmax)) return;
+  fit_lattice(l, xmin, xmax, ymin, ymax);
+
+  // Spread V dxi and V (with the images' V), in particle order.
+  for (int p = 0; p < P.n; ++p) {
+    if (P.material[p] != material) continue;
+    const double v = P.vol[p], va = P.vol[p] * in[p];
+    for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) {
+      increments_[k] += w * va;
+      volumes_[k] += w * v;
+    });
+    double mx, my;
+    if (mirror_point(P.x[p], P.y[p], reach, mx, my))
+      for_nodes(mx, my, [&](std::size_t k, double w) { volumes_[k] += w * v; });
+  }
+  convolve(increments_, ax_, ay_);
+  convolve(volumes_, ax_, ay_);
+
+  // Taken back: sum w V dxi / sum w V is the normalised average, times the
+  // weight a point deep inside the body has, K_x K_y, is the integral of
+  // the kernel over the increments as if the body went on all round; over
+  // t_s K_line, and the lattice's own factor for a thin band, it is
+  // delta / t_s.
+  const double kx = line_integral(ax_.spacing, ax_.taps), ky = line_integral(ay_.spacing, ay_.taps);
+  const double scale = kx * ky / (reg.band_thickness * kx * band_peak(ay_.spacing / l, 0.0));
+#pragma omp parallel for schedule(static) if (P.n > kParallelMin)
+  for (int p = 0; p < P.n; ++p) {
+    if (P.material[p] != material) continue;
+    double sum = 0, weight = 0;
+    for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) {
+      sum += w * increments_[k];
+      weight += w * volumes_[k];
+    });
+    const double band = weight > 0.0 ? scale * sum / weight : 0.0;
+    out[p] = localised_increment(in[p], band, reg.band_thickness, l);
+  }
 }
 
 void NonlocalAverage::apply(const NonlocalPoints& P, const double* in, double* out) {
   std::copy_n(in, P.n, out);
-  for (int m = 0; m < static_cast<int>(lengths_.size()); ++m) {
-    const double l = lengths_[m];
-    if (l <= 0.0) continue;
-    aggregate(P, in, m);
-#pragma omp parallel for schedule(dynamic, 64) if (P.n > kParallelMin)
-    for (int p = 0; p < P.n; ++p)
-      if (P.material[p] == m) out[p] = average_at(P.x[p], P.y[p], l, in[p]);
-  }
+  for (int m = 0; m < static_cast<int>(materials_.size()); ++m)
+    if (materials_[m].length > 0.0) average_material(P, in, out, m);
 }
 
 }  // namespace runout

@@ -421,17 +421,12 @@ BoundarySpec read_boundary(TableReader r) {
 }
 
 // A periodic domain must repeat whole: a planar base (the grid's bottom
-// line, the same at every x) or none, and no nonlocal averaging, whose
-// neighbourhoods do not reach across the seam.
+// line, the same at every x) or none.
 void check_periodic(const TableReader& boundary_table, const Scene& scene) {
   if (scene.boundary.left != BoundaryKind::Periodic) return;
   const Value left = boundary_table.need("left");
   if (scene.base.kind == BaseKind::Polyline)
     left.fail("\"periodic\" needs a planar base or none: a polyline base does not repeat");
-  for (const MaterialSpec& m : scene.materials)
-    if (m.nonlocal_length > 0.0)
-      left.fail("\"periodic\" does not take nonlocal softening (material \"" + m.name +
-                "\" has nonlocal_length): its averaging does not reach across the seam");
 }
 
 TimeSpec read_time(TableReader r, const GridSpec& grid, const SolverSpec& solver) {
@@ -513,7 +508,12 @@ void read_tresca(const TableReader& r, MaterialSpec& m) {
   if (auto v = r.find("reference_rate")) m.reference_rate = v->number(above(0.0));
   if (auto v = r.find("strength_form"))
     m.strength_form = v->choice(scene_text::kStrengthFormNames).value;
-  if (auto v = r.find("nonlocal_length")) m.nonlocal_length = v->number(above(0.0));
+  if (auto v = r.find("band_thickness")) m.band_thickness = v->number(above(0.0));
+  if (auto v = r.find("nonlocal_length")) {
+    m.nonlocal_length = v->number(above(0.0));
+    if (m.band_thickness == 0.0)
+      v->fail("nonlocal_length averages the regularised softening, which band_thickness sets");
+  }
 }
 
 std::vector<MaterialSpec> read_materials(const TableReader& root) {
@@ -526,7 +526,8 @@ std::vector<MaterialSpec> read_materials(const TableReader& root) {
                                           "poisson_ratio"};
     if (m.model == MaterialModel::Tresca)
       keys.insert(keys.end(), {"su0", "sensitivity", "xi95", "eta", "rate_exponent",
-                               "reference_rate", "strength_form", "nonlocal_length"});
+                               "reference_rate", "strength_form", "band_thickness",
+                               "nonlocal_length"});
     r.check_keys(keys);
     const Value name = r.need("name");
     m.name = name.string();

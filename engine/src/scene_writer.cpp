@@ -76,7 +76,9 @@ void write_material(std::ostream& out, const MaterialSpec& m) {
         << "reference_rate = " << number(m.reference_rate) << "\n"
         << "strength_form = "
         << quoted_text(name_of(scene_text::kStrengthFormNames, m.strength_form)) << "\n";
-    if (m.nonlocal_length > 0.0)  // 0 (local) is not a value the key takes
+    if (m.band_thickness > 0.0)  // 0 (local) is not a value the key takes
+      out << "band_thickness = " << number(m.band_thickness) << "\n";
+    if (m.nonlocal_length > 0.0)
       out << "nonlocal_length = " << number(m.nonlocal_length) << "\n";
   }
   out << "\n";

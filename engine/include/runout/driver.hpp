@@ -227,16 +227,20 @@ struct XiIncrement {
   double* increment;
   RUNOUT_HD void operator()(int p) const { increment[p] = P.xi[p] - start[p]; }
 };
-// The nonlocal increment replaces the local one, and su follows it.
+// The regularised increment replaces the local one; its rate is the one
+// the next step's strength takes (StrengthParams::regularised), and su
+// follows both.
 struct SetNonlocalXi {
   ParticleView P;
   const double* start;
   const double* average;
   const double* lengths;  // per material
   const MaterialParams* mats;
+  double dt;
   RUNOUT_HD void operator()(int p) const {
     if (lengths[P.material[p]] <= 0.0) return;
     P.xi[p] = start[p] + average[p];
+    P.gamma_dot[p] = average[p] / dt;
     P.su[p] = strength(mats[P.material[p]].strength, P.xi[p], P.gamma_dot[p]);
   }
 };
@@ -284,7 +288,7 @@ class Driver {
   void fit_grid(double dt);
   void exchange(Exchange after);
   void xpic_start_velocity(const StepConfig& c);
-  void regularise_softening();
+  void regularise_softening(double dt);
   [[noreturn]] void fail(double dt);
 
   Base base_;
@@ -306,10 +310,37 @@ class Driver {
 
 namespace driver_detail {
 
-inline std::vector<double> nonlocal_lengths(const Scene& s) {
-  std::vector<double> out;
-  for (const auto& m : s.materials) out.push_back(m.nonlocal_length);
+// Per material, l and t_s of regularised softening (nonlocal.hpp); l is
+// kRegularisationCells cells unless the scene sets it.
+inline std::vector<Regularisation> regularisations(const Scene& s) {
+  std::vector<Regularisation> out;
+  for (const auto& m : s.materials) {
+    Regularisation r;
+    if (m.model == MaterialModel::Tresca && m.band_thickness > 0.0) {
+      r.band_thickness = m.band_thickness;
+      r.length = m.nonlocal_length > 0.0 ? m.nonlocal_length
+                                         : kRegularisationCells * s.grid.cell_size;
+    }
+    out.push_back(r);
+  }
   return out;
+}
+inline std::vector<double> nonlocal_lengths(const std::vector<Regularisation>& r) {
+  std::vector<double> out;
+  for (const auto& m : r) out.push_back(m.length);
+  return out;
+}
+// The base's images enter the average where the base is no-slip: the
+// clay's shear gathers in a band along it (nonlocal.hpp).
+inline NonlocalAverage nonlocal_average(const Scene& s, const std::vector<Regularisation>& r,
+                                        const Base& base) {
+  const BaseView mirror = s.base.kind != BaseKind::None && s.base.interface == InterfaceKind::NoSlip
+                              ? base.view()
+                              : BaseView{};
+  if (s.boundary.left != BoundaryKind::Periodic) return NonlocalAverage(r, 0.0, 0.0, mirror);
+  const double h = s.grid.cell_size;  // the period of make_step_config
+  return NonlocalAverage(r, std::ceil((s.grid.max.x() - s.grid.min.x()) / h - 1e-9) * h,
+                         s.grid.min.x(), mirror);
 }
 
 // The driver's own particles, before the backend takes them: view() needs
@@ -359,8 +390,9 @@ template <class Backend>
 Driver<Backend>::Driver(const Scene& scene, Particles particles)
     : base_(scene.base, scene.grid.min.y()),
       materials_(make_materials(scene)),
-      nonlocal_lengths_(driver_detail::nonlocal_lengths(scene)),
-      nonlocal_(nonlocal_lengths_),
+      nonlocal_lengths_(driver_detail::nonlocal_lengths(driver_detail::regularisations(scene))),
+      nonlocal_(
+          driver_detail::nonlocal_average(scene, driver_detail::regularisations(scene), base_)),
       config_(make_step_config(scene, materials_)),
       limits_(guard_limits(scene, materials_, particles)),
       max_signal_speed_(driver_detail::first_signal_speed(particles, materials_)),
@@ -433,7 +465,7 @@ void Driver<Backend>::xpic_start_velocity(const StepConfig& c) {
 // Galavi & Schweiger 2010: local return, nonlocal internal variable). The
 // increments are measured at the particles' end-of-step positions.
 template <class Backend>
-void Driver<Backend>::regularise_softening() {
+void Driver<Backend>::regularise_softening(double dt) {
   const ParticleView P = backend_.particles();
   double* start = backend_.xi_start();
   double* local = backend_.xi_local();
@@ -441,7 +473,7 @@ void Driver<Backend>::regularise_softening() {
   backend_.for_each_particle(stage::XiIncrement{P, start, local});
   backend_.nonlocal_average(nonlocal_, local, average);
   backend_.for_each_particle(stage::SetNonlocalXi{P, start, average, backend_.nonlocal_lengths(),
-                                                  backend_.materials()});
+                                                  backend_.materials(), dt});
 }
 
 template <class Backend>
@@ -497,7 +529,7 @@ void Driver<Backend>::step(double dt) {
   });
   if (speed.bad > 0) fail(dt);
   // After the mean stress, which it neither reads nor changes.
-  if (nonlocal) regularise_softening();
+  if (nonlocal) regularise_softening(dt);
   max_signal_speed_ = speed.max;
   basal_shear_force_ = basal;
   time_ += dt;

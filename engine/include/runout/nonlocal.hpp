@@ -1,49 +1,56 @@
 #pragma once
-// Nonlocal averaging of a per-particle field over a material length l
-// (docs/strength.md, "Nonlocal softening"): the regularisation of strain
-// softening. The MPM driver gives it the increment of the softening
-// variable xi of one step, as the return mapping found it particle by
-// particle, and adds the average to xi instead:
+// Regularised softening (docs/strength.md, "Regularised softening"): the
+// increment of the softening variable xi of one step, as the return
+// mapping found it particle by particle (a_p), replaced by the plastic
+// shear displacement delta that the band through the particle carries,
+// over the physical band thickness t_s of the clay, where the particle is
+// in a band:
 //
-//   a*_p = sum_q w(r_pq) V_q a_q / sum_q w(r_pq) V_q,   w(r) = exp(-(r / l)^2)
+//   delta_p / t_s = (sum_q w_pq V_q a_q / sum_q w_pq V_q) W_inf / (t_s K_line),
+//   w(r) = exp(-(r / l)^2),
 //
-// over the particles q of p's material within kNonlocalCutoff l of p
-// (Brinkgreve 1994, PhD thesis, TU Delft; Galavi & Schweiger 2010, Int. J.
-// Geomech. 10(1); in MPM Burghardt, Brannon & Guilkey 2012, Int. J. Numer.
-// Anal. Meth. Geomech. 36). A softening band then cannot be thinner than
-// about l whatever the cell size, so the energy it dissipates, and the
-// runout, stop depending on h once h is well below l.
+// over the particles q of p's material, W_inf = pi l^2 the weight sum deep
+// inside a body and K_line = sqrt(pi) l the integral of w along a line
+// through its centre.
 //
-// The weight is the Gaussian rather than Galavi & Schweiger's
-// (r / l) exp(-(r / l)^2): that one gives a particle no weight of its own,
-// so a band one particle wide would hand its whole increment to its
-// neighbours and stop softening where it yields; the Gaussian keeps the
-// largest share where the plastic strain is made and is the usual kernel of
-// integral-type nonlocal models (Bazant & Jirasek 2002, J. Eng. Mech. 128).
+// Why this form. Remoulding in a band is governed by the displacement
+// across it (Einav & Randolph 2005; the crack band of Bazant & Oh 1983; in
+// MPM the regularised Mohr-Coulomb of Tran & Solowski 2019, which scales
+// the band's strain by t_FE / t_shear). A computed band of any numerical
+// width b well below l carrying delta (per unit length along it: the sum
+// over the band of V a is delta) gives delta K_line / W_inf as the
+// normalised average at its centre, so the above is delta / t_s whatever
+// the cell, the particles per cell and l (to O((b / l)^2): 2 % at
+// b = l / 2). The band's width is then measured, b = delta / a_p, rather
+// than assumed: a zone that yields over the averaging width or more is
+// diffuse yield, which no band concentrates, and keeps its own strain
+// (localised_increment in nonlocal.cpp). The normalisation keeps a band
+// that ends at a free surface whole up to the surface; a band along a
+// no-slip base, where the clay's shear gathers, keeps the whole kernel
+// across it by the volumes of the particles' images in the base (the
+// base given to the constructor). l is numerical, kRegularisationCells
+// cells unless nonlocal_length sets it: the answer does not depend on it
+// (tests/test_regularisation.cpp).
 //
-// The sums over q are evaluated by binning: the particles of the material
-// are gathered into square bins of side l / kNonlocalBinsPerLength, fixed
-// in physical size, and each bin enters the denominator as its volume at
-// its volume centroid and the numerator as its sum of V a at the centroid
-// of V a (a >= 0: plastic increments). The first moments are exact, so the
-// error is second order in the bin size, and since the bins scale with l,
-// not with the cell size, it does not bring back a mesh dependence; the
-// cost is about a hundred bins per particle whatever the particle spacing,
-// where pairs would be (l / spacing)^2 times more.
-//
-// Properties (tests/test_regularisation.cpp): a uniform field stays
-// uniform (the weights are normalised per particle); a spike at q
-// becomes w(r) V_q a_q / sum w V, and the sum is close to pi l^2 (1 - e^-9)
-// per unit volume inside a body; the volume integral sum_p V_p a_p is kept
-// inside a body where the weight sums of all particles within reach agree;
-// near an edge the particles further in take a smaller share of an
-// increment made at the edge, so part of it is lost.
+// How it is evaluated, in O(N): the particles' V a and V are spread onto a
+// lattice of spacing l / 3 with quadratic B-spline weights, the lattice is
+// convolved with w along x and then along y (w is separable), and each
+// particle takes the two sums back with the same weights. Quadratic
+// B-splines reproduce the second moment about any point, so the centre
+// value of a band moves by at most 0.2 % with where it lies between
+// lattice nodes (5 % with linear weights); the lattice is fixed in space,
+// its spacing set by l, not by the cell. It wraps along x in a periodic
+// scene. The sums run in a fixed order, so the result does not depend on
+// the number of threads.
 #include <vector>
+
+#include "runout/base.hpp"
 
 namespace runout {
 
-constexpr double kNonlocalCutoff = 3.0;  // in l: exp(-9) = 1.2e-4 of the weight is left out
-constexpr double kNonlocalBinsPerLength = 2.0;
+constexpr double kNonlocalCutoff = 3.0;         // in l: exp(-9) = 1.2e-4 of the weight is left out
+constexpr double kLatticePerLength = 3.0;       // lattice nodes per l
+constexpr double kRegularisationCells = 3.0;    // the default l, in cells
 
 struct NonlocalPoints {
   int n = 0;
@@ -52,42 +59,51 @@ struct NonlocalPoints {
   const int* material = nullptr;            // material index
 };
 
+// Per material: l [m] (0: not regularised) and t_s [m].
+struct Regularisation {
+  double length = 0;
+  double band_thickness = 0;
+};
+
 class NonlocalAverage {
  public:
-  // lengths[m] > 0: the averaging length l [m] of material m; 0: its
-  // particles are not averaged.
-  explicit NonlocalAverage(std::vector<double> lengths = {});
+  // period > 0: the scene is periodic along x with that period from x0.
+  // mirror: a no-slip base (BaseKind::None: none).
+  explicit NonlocalAverage(std::vector<Regularisation> materials = {}, double period = 0,
+                           double x0 = 0, BaseView mirror = {});
 
   bool active() const { return active_; }
-  double length(int material) const { return lengths_[material]; }
 
-  // out[p] = a*_p for the particles of a material with a length, in[p]
-  // otherwise; in >= 0. The sums run in a fixed order, so the result does
-  // not depend on the number of threads.
+  // out[p] = the regularised increment for the particles of a regularised
+  // material, in[p] otherwise; in >= 0.
   void apply(const NonlocalPoints& points, const double* in, double* out);
 
- private:
-  // Moments of one bin's points with masses m (the volumes, or V a): the
-  // total, then the centroid and the central second moments.
-  struct Moments {
-    double mass = 0, x = 0, y = 0, xx = 0, xy = 0, yy = 0;
-    void add(double m, double u, double v);
-    void centre(double cx, double cy);
-    double weighted(double px, double py, double inv_l2) const;
-  };
-  struct Bin {
-    Moments vol, sum;
-  };
-  void aggregate(const NonlocalPoints& points, const double* in, int material);
-  int bin_index(double x, double y) const;
-  double average_at(double x, double y, double l, double own_value) const;
+  // The centre value of a band at offset s (in lattice spacings) from a
+  // node, over the value of an infinitely thin band's: the discrete
+  // operator's own factor, which apply divides out at s = 0.
+  static double band_peak(double spacing_over_length, double s);
 
-  std::vector<double> lengths_;
+ private:
+  struct Axis {
+    double spacing = 0;        // [m]
+    int first = 0, count = 0;  // lattice indices first .. first + count - 1
+    int wrap = 0;              // > 0: indices modulo wrap (periodic)
+    std::vector<double> taps;  // w at 0, 1, 2, ... spacings
+    int node(int i) const;     // the storage column of lattice index i
+  };
+  void fit_lattice(double l, double xmin, double xmax, double ymin, double ymax);
+  template <class F>
+  void for_nodes(double x, double y, F&& f) const;  // f(lattice index, weight)
+  bool mirror_point(double x, double y, double reach, double& mx, double& my) const;
+  void convolve(std::vector<double>& field, const Axis& ax, const Axis& ay);
+  void average_material(const NonlocalPoints& P, const double* in, double* out, int material);
+
+  std::vector<Regularisation> materials_;
+  double period_, x0_;
+  BaseView mirror_;
   bool active_ = false;
-  // The bins of the material being averaged, over its particles' bounding box.
-  double bin_ = 0, x0_ = 0, y0_ = 0;
-  int bins_x_ = 0, bins_y_ = 0;
-  std::vector<Bin> bins_;
+  Axis ax_, ay_;
+  std::vector<double> increments_, volumes_, pass_;  // the spread V a and V, and the x pass
 };
 
 }  // namespace runout

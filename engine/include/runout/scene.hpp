@@ -83,8 +83,12 @@ struct MaterialSpec {
   double rate_exponent = 0.1;    // n
   double reference_rate = 1.0;   // gamma_dot_ref [1/s]
   StrengthForm strength_form = StrengthForm::Multiplicative;
-  // Nonlocal softening (docs/strength.md, nonlocal.hpp): > 0, the length l
-  // [m] over which the MPM averages each step's increment of xi. 0: local.
+  // Regularised softening (docs/strength.md, nonlocal.hpp): > 0, the
+  // thickness t_s [m] of the clay's physical shear band, so that a band
+  // remoulds after the displacement xi95 t_s; 0: local softening (mesh
+  // dependent). nonlocal_length: the averaging length l [m], a numerical
+  // choice the answer does not depend on; 0: kRegularisationCells cells.
+  double band_thickness = 0.0;
   double nonlocal_length = 0.0;
 };
 

@@ -987,7 +987,7 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Veloci
                        P.sxx[p], P.syy[p], P.sxy[p], P.szz[p], 0.0};
   stress_step(u, L.xx, L.xy, L.yx, L.yy, mat, dt);
   StressPoint sp{u.sxx, u.syy, u.sxy, u.szz, P.xi[p], P.su[p]};
-  plastic_correction(mat, u.gamma_dot, sp);
+  plastic_correction(mat, mat.strength.regularised ? P.gamma_dot[p] : u.gamma_dot, sp);
 
   P.vol[p] = u.vol;
   P.fxx[p] = u.fxx;
@@ -1021,7 +1021,8 @@ inline Lanes stress_update_x4(const ParticleView& P, int p, const Lanes& xx, con
   // a slide at nearly every step, they are the new stress as they are.
   bool elastic = !tresca;
   if (tresca) {
-    rate_scaling_x4(mat.strength, u.gamma_dot, a, b);
+    rate_scaling_x4(mat.strength, mat.strength.regularised ? at(P.gamma_dot) : u.gamma_dot, a,
+                    b);
     S = softening_x4(mat.strength, at(P.xi));
     const Lanes tau_trial = mohr_radius(u.sxx, u.syy, u.sxy);
     const Lanes su_trial = strength_at(mat.strength, a, b, S);

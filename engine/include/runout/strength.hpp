@@ -33,6 +33,11 @@ struct StrengthParams {
   double rate_exponent = 0.1; // n, shear-thinning index
   double reference_rate = 1;  // gamma_dot_ref [1/s]
   StrengthForm form = StrengthForm::Multiplicative;
+  // Regularised softening (nonlocal.hpp): xi is the band's displacement
+  // over t_s, and the rate that enters R is its rate, delta_dot / t_s, of
+  // the step before (the particle's gamma_dot as the driver leaves it),
+  // not the numerical band's strain rate, which grows as the cell shrinks.
+  bool regularised = false;
 };
 
 // exp(-3) = 0.0498: at xi = xi95, 95 % of the drop 1 - d_rem has happened.
