@@ -219,9 +219,10 @@ class CudaBackend {
   double* xi_start() const { return xi_start_.get(); }
   double* xi_local() const { return xi_local_.get(); }
   double* xi_average() const { return xi_average_.get(); }
-  // On the host: the binned sums of nonlocal.hpp have no device version
+  // On the host: the lattice sums of nonlocal.hpp have no device version
   // yet, so positions, volumes, materials and the increments go over and
-  // the averages come back (five arrays a step, nonlocal runs only).
+  // the regularised increments come back (five arrays a step, regularised
+  // runs only).
   void nonlocal_average(NonlocalAverage& nonlocal, const double* in, double* out);
   const double* nonlocal_lengths() const { return lengths_.get(); }
   const MaterialParams* materials() const { return materials_.get(); }

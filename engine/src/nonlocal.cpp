@@ -75,42 +75,44 @@ double NonlocalAverage::band_peak(double spacing_over_length, double s) {
   return peak;
 }
 
-int NonlocalAverage::Axis::node(int i) const {
-  if (wrap > 0) return ((i % wrap) + wrap) % wrap;
-  return i - first;
-}
-
 // field (ay.count rows of ax.count) convolved with the taps along x into
-// pass_, then along y back into field; rows and columns are independent,
-// so the threads split them without changing a sum's order.
+// pass_, then along y back into field, both as sums over the taps of whole
+// shifted rows (contiguous, so they vectorise); rows that are zero, most of
+// a slide's bounding box, are skipped. Each output is summed in the same
+// order whatever the threads, which split the rows.
 void NonlocalAverage::convolve(std::vector<double>& field, const Axis& ax, const Axis& ay) {
   const int nx = ax.count, ny = ay.count;
   const int rx = static_cast<int>(ax.taps.size()) - 1, ry = static_cast<int>(ay.taps.size()) - 1;
   pass_.assign(field.size(), 0.0);
+  nonzero_.assign(ny, 0);
 #pragma omp parallel for schedule(static) if (nx * ny > kParallelMin)
   for (int j = 0; j < ny; ++j) {
     const double* in = field.data() + static_cast<std::size_t>(j) * nx;
     double* out = pass_.data() + static_cast<std::size_t>(j) * nx;
-    for (int i = 0; i < nx; ++i) {
-      const double v = in[i];
-      if (v == 0.0) continue;  // most of a slide's bounding box is empty
-      for (int k = -rx; k <= rx; ++k) {
-        int t = i + k;
-        if (ax.wrap > 0) t = ((t % nx) + nx) % nx;
-        else if (t < 0 || t >= nx) continue;
-        out[t] += ax.taps[std::abs(k)] * v;
+    if (std::all_of(in, in + nx, [](double v) { return v == 0.0; })) continue;
+    nonzero_[j] = 1;
+    for (int k = -rx; k <= rx; ++k) {
+      const double w = ax.taps[std::abs(k)];
+      if (ax.wrap > 0) {
+        for (int i = 0; i < nx; ++i) out[i] += w * in[((i + k) % nx + nx) % nx];
+      } else {
+        // out[i] += w in[i + k] for 0 <= i + k < nx
+        const int lo = std::max(0, -k), hi = std::min(nx, nx - k);
+        for (int i = lo; i < hi; ++i) out[i] += w * in[i + k];
       }
     }
   }
-  std::fill(field.begin(), field.end(), 0.0);
 #pragma omp parallel for schedule(static) if (nx * ny > kParallelMin)
-  for (int i = 0; i < nx; ++i)
-    for (int j = 0; j < ny; ++j) {
-      const double v = pass_[static_cast<std::size_t>(j) * nx + i];
-      if (v == 0.0) continue;
-      for (int k = std::max(-ry, -j); k <= std::min(ry, ny - 1 - j); ++k)
-        field[static_cast<std::size_t>(j + k) * nx + i] += ay.taps[std::abs(k)] * v;
+  for (int j = 0; j < ny; ++j) {
+    double* out = field.data() + static_cast<std::size_t>(j) * nx;
+    std::fill(out, out + nx, 0.0);
+    for (int k = std::max(-ry, -j); k <= std::min(ry, ny - 1 - j); ++k) {
+      if (!nonzero_[j + k]) continue;
+      const double w = ay.taps[std::abs(k)];
+      const double* in = pass_.data() + static_cast<std::size_t>(j + k) * nx;
+      for (int i = 0; i < nx; ++i) out[i] += w * in[i];
     }
+  }
 }
 
 // The lattice over the points' box and the kernel's reach; along x the
@@ -187,10 +189,13 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
   for (int p = 0; p < P.n; ++p) {
     if (P.material[p] != material) continue;
     const double v = P.vol[p], va = P.vol[p] * in[p];
-    for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) {
-      increments_[k] += w * va;
-      volumes_[k] += w * v;
-    });
+    if (va > 0.0)
+      for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) {
+        increments_[k] += w * va;
+        volumes_[k] += w * v;
+      });
+    else
+      for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) { volumes_[k] += w * v; });
     double mx, my;
     if (mirror_point(P.x[p], P.y[p], reach, mx, my))
       for_nodes(mx, my, [&](std::size_t k, double w) { volumes_[k] += w * v; });
@@ -208,6 +213,10 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
 #pragma omp parallel for schedule(static) if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) {
     if (P.material[p] != material) continue;
+    if (in[p] <= 0.0) {  // a particle that does not yield does not soften
+      out[p] = 0.0;
+      continue;
+    }
     double sum = 0, weight = 0;
     for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) {
       sum += w * increments_[k];

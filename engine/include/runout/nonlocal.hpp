@@ -89,7 +89,9 @@ class NonlocalAverage {
     int first = 0, count = 0;  // lattice indices first .. first + count - 1
     int wrap = 0;              // > 0: indices modulo wrap (periodic)
     std::vector<double> taps;  // w at 0, 1, 2, ... spacings
-    int node(int i) const;     // the storage column of lattice index i
+    int node(int i) const {    // the storage column of lattice index i
+      return wrap > 0 ? ((i % wrap) + wrap) % wrap : i - first;
+    }
   };
   void fit_lattice(double l, double xmin, double xmax, double ymin, double ymax);
   template <class F>
@@ -104,6 +106,7 @@ class NonlocalAverage {
   bool active_ = false;
   Axis ax_, ay_;
   std::vector<double> increments_, volumes_, pass_;  // the spread V a and V, and the x pass
+  std::vector<char> nonzero_;                        // the rows of the x pass that are not zero
 };
 
 }  // namespace runout
