@@ -127,8 +127,12 @@ TEST(ReferenceScenes, Case3BlockKeepsItsHeightBetterThanCase1) {
   EXPECT_GT(block, 1.5 * elongation);
 }
 
+// At 0.25 m (measured: median 10.2, 99th percentile 427). At 0.5 m the
+// regularisation's l is 1.5 m, a third of the slide's height, and the
+// slide remoulds as a whole (median 50.6, 99th percentile 469) and
+// elongates instead of spreading: too coarse for case 4 (docs/validation.md).
 TEST(ReferenceScenes, Case4LocalisesPlasticStrainIntoBands) {
-  Simulation sim(coarse("case4_spreading", 0.5));
+  Simulation sim(coarse("case4_spreading", 0.25));
   sim.advance_to(16.0);
   const std::vector<double> xi(sim.particles().xi.begin(), sim.particles().xi.end());
   const double median = quantile(xi, 0.5), high = quantile(xi, 0.99);
