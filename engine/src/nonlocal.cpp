@@ -62,6 +62,12 @@ NonlocalAverage::NonlocalAverage(std::vector<Regularisation> materials, double p
   for (const auto& m : materials_) active_ = active_ || m.length > 0.0;
 }
 
+std::vector<double> NonlocalAverage::lengths() const {
+  std::vector<double> out;
+  for (const auto& m : materials_) out.push_back(m.length);
+  return out;
+}
+
 // sum_j N_j(s) sum_i w((j - i) d) N_i(s) with d = spacing / l: the centre
 // value of a thin band through s after spreading, convolving and taking back.
 double NonlocalAverage::band_peak(double spacing_over_length, double s) {
@@ -176,11 +182,15 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
     ymin = std::min(ymin, y);
     ymax = std::max(ymax, y);
   };
+  images_.clear();
   for (int p = 0; p < P.n; ++p) {
     if (P.material[p] != material) continue;
     extend(P.x[p], P.y[p]);
-    double mx, my;
-    if (mirror_point(P.x[p], P.y[p], reach, mx, my)) extend(mx, my);
+    Image image{0.0, 0.0, P.vol[p]};
+    if (mirror_point(P.x[p], P.y[p], reach, image.x, image.y)) {
+      extend(image.x, image.y);
+      images_.push_back(image);
+    }
   }
   if (!(xmin <= xmax)) return;
   fit_lattice(l, xmin, xmax, ymin, ymax);
@@ -196,10 +206,9 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
       });
     else
       for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) { volumes_[k] += w * v; });
-    double mx, my;
-    if (mirror_point(P.x[p], P.y[p], reach, mx, my))
-      for_nodes(mx, my, [&](std::size_t k, double w) { volumes_[k] += w * v; });
   }
+  for (const Image& image : images_)
+    for_nodes(image.x, image.y, [&](std::size_t k, double w) { volumes_[k] += w * image.vol; });
   convolve(increments_, ax_, ay_);
   convolve(volumes_, ax_, ay_);
 

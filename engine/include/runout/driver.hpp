@@ -293,9 +293,9 @@ class Driver {
 
   Base base_;
   std::vector<MaterialParams> materials_;
-  std::vector<double> nonlocal_lengths_;
-  NonlocalAverage nonlocal_;
   StepConfig config_;
+  NonlocalAverage nonlocal_;
+  std::vector<double> nonlocal_lengths_;
   GuardLimits limits_;
   double max_signal_speed_ = 0;
   Backend backend_;
@@ -325,22 +325,14 @@ inline std::vector<Regularisation> regularisations(const Scene& s) {
   }
   return out;
 }
-inline std::vector<double> nonlocal_lengths(const std::vector<Regularisation>& r) {
-  std::vector<double> out;
-  for (const auto& m : r) out.push_back(m.length);
-  return out;
-}
 // The base's images enter the average where the base is no-slip: the
-// clay's shear gathers in a band along it (nonlocal.hpp).
-inline NonlocalAverage nonlocal_average(const Scene& s, const std::vector<Regularisation>& r,
-                                        const Base& base) {
+// clay's shear gathers in a band along it (nonlocal.hpp). The period is
+// the step's (0: not periodic).
+inline NonlocalAverage nonlocal_average(const Scene& s, const StepConfig& c, const Base& base) {
   const BaseView mirror = s.base.kind != BaseKind::None && s.base.interface == InterfaceKind::NoSlip
                               ? base.view()
                               : BaseView{};
-  if (s.boundary.left != BoundaryKind::Periodic) return NonlocalAverage(r, 0.0, 0.0, mirror);
-  const double h = s.grid.cell_size;  // the period of make_step_config
-  return NonlocalAverage(r, std::ceil((s.grid.max.x() - s.grid.min.x()) / h - 1e-9) * h,
-                         s.grid.min.x(), mirror);
+  return NonlocalAverage(regularisations(s), c.period, c.domain_x0, mirror);
 }
 
 // The driver's own particles, before the backend takes them: view() needs
@@ -390,10 +382,9 @@ template <class Backend>
 Driver<Backend>::Driver(const Scene& scene, Particles particles)
     : base_(scene.base, scene.grid.min.y()),
       materials_(make_materials(scene)),
-      nonlocal_lengths_(driver_detail::nonlocal_lengths(driver_detail::regularisations(scene))),
-      nonlocal_(
-          driver_detail::nonlocal_average(scene, driver_detail::regularisations(scene), base_)),
       config_(make_step_config(scene, materials_)),
+      nonlocal_(driver_detail::nonlocal_average(scene, config_, base_)),
+      nonlocal_lengths_(nonlocal_.lengths()),
       limits_(guard_limits(scene, materials_, particles)),
       max_signal_speed_(driver_detail::first_signal_speed(particles, materials_)),
       backend_(std::move(particles), materials_, base_, nonlocal_lengths_),

@@ -73,6 +73,7 @@ class NonlocalAverage {
                            double x0 = 0, BaseView mirror = {});
 
   bool active() const { return active_; }
+  std::vector<double> lengths() const;  // l per material, 0 where not regularised
 
   // out[p] = the regularised increment for the particles of a regularised
   // material, in[p] otherwise; in >= 0.
@@ -107,6 +108,10 @@ class NonlocalAverage {
   Axis ax_, ay_;
   std::vector<double> increments_, volumes_, pass_;  // the spread V a and V, and the x pass
   std::vector<char> nonzero_;                        // the rows of the x pass that are not zero
+  struct Image {
+    double x, y, vol;  // a particle's image in the no-slip base, and its volume
+  };
+  std::vector<Image> images_;  // of the material being averaged, in particle order
 };
 
 }  // namespace runout
