@@ -392,21 +392,24 @@ double spread(const std::vector<double>& v) {
   return (*hi - *lo) / mean;
 }
 
+double scene_band_thickness() {
+  return load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/case4_spreading.toml")
+      .materials[0]
+      .band_thickness;
+}
+
 }  // namespace
 
-// Regularised (t_s of the scene): three cells with 2 x 2 particles and l
-// of three cells, then l of 4.5 cells at the middle cell: runouts within
-// 5 % of each other (measured 38.33, 37.02, 36.96 and 36.77 m: 4.2 %). The
-// local law on the same cells runs out far less (24.38, 26.95, 26.82 m):
-// its bands, a cell or two thick, need several times the displacement of a
-// 0.1 m band to remould. 3 x 3 particles at the middle cell run 14 %
-// further (42.05 m; the local law 3 %): printed, not asserted, the open
-// part of docs/strength.md, "What is not converged".
-TEST(Regularisation, ASmallSlideRunsAsFarOnEveryCellAndLength) {
-  const double t_s =
-      load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/case4_spreading.toml")
-          .materials[0]
-          .band_thickness;
+// Regularised (t_s of the scene, l three cells) on three cells with 2 x 2
+// particles: runouts within 5 % of each other (measured 38.33, 37.02 and
+// 36.96 m: 3.7 %). The local law on the same cells runs out far less
+// (24.38, 26.95, 26.82 m): its bands, a cell or two thick, need several
+// times the displacement of a 0.1 m band to remould. With 3 x 3 particles
+// at 0.35 m the regularised slide runs 14 % further (42.05 m): the open
+// part of docs/strength.md, "What is not converged", not asserted here.
+// scripts/regularisation_chart.py draws what this test prints.
+TEST(Regularisation, ASmallSlideRunsAsFarOnEveryCell) {
+  const double t_s = scene_band_thickness();
   ASSERT_GT(t_s, 0.0);
   const std::vector<double> cells = {0.5, 0.35, 0.25};
   std::vector<double> regularised, local;
@@ -416,14 +419,22 @@ TEST(Regularisation, ASmallSlideRunsAsFarOnEveryCellAndLength) {
     std::printf("h = %.3f m, 2 x 2: runout regularised %.2f m, local %.2f m\n", h,
                 regularised.back(), local.back());
   }
-  const double l = 1.5 * kRegularisationCells * cells[1];
-  regularised.push_back(small_case4_runout(cells[1], 2, t_s, l));
-  std::printf("h = %.3f m, 2 x 2, l = %.3f m: regularised %.2f m\n", cells[1], l,
-              regularised.back());
-  std::printf("h = %.3f m, 3 x 3: regularised %.2f m\n", cells[1],
-              small_case4_runout(cells[1], 3, t_s, kRegularisationCells * cells[1]));
   std::printf("spread (max - min) / mean: regularised %.3f, local %.3f\n", spread(regularised),
               spread(local));
   EXPECT_LT(spread(regularised), 0.05);
   for (std::size_t k = 0; k < cells.size(); ++k) EXPECT_GT(regularised[k], 1.25 * local[k]);
+}
+
+// The averaging length is numerical: l of 3 and 4.5 cells at 0.35 m run
+// out within 2 % of each other (measured 37.02 and 36.77 m: 0.7 %).
+TEST(Regularisation, ASmallSlideRunsAsFarWithEitherAveragingLength) {
+  const double t_s = scene_band_thickness(), h = 0.35;
+  ASSERT_GT(t_s, 0.0);
+  std::vector<double> runouts;
+  for (double cells : {kRegularisationCells, 1.5 * kRegularisationCells}) {
+    runouts.push_back(small_case4_runout(h, 2, t_s, cells * h));
+    std::printf("h = %.3f m, 2 x 2, l = %.3f m: regularised %.2f m\n", h, cells * h,
+                runouts.back());
+  }
+  EXPECT_LT(spread(runouts), 0.02);
 }
