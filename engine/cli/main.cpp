@@ -23,6 +23,7 @@
 #include <optional>
 
 #include "analyse_command.hpp"
+#include "report_command.hpp"
 #include "budget_check.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
@@ -459,6 +460,9 @@ int main(int argc, char** argv) {
   AnalyseArgs analyse_args;
   CLI::App* analyse_cmd = nullptr;
   add_analyse_command(app, analyse_args, analyse_cmd);
+  ReportArgs report_args;
+  CLI::App* report_cmd = nullptr;
+  add_report_command(app, report_args, report_cmd);
   app.add_subcommand("info", "Version, threads and CUDA devices");
 
   try {
@@ -481,6 +485,7 @@ int main(int argc, char** argv) {
     if (*study_cmd) return run_study(study_args);
     if (*verify_cmd) return verify(verify_dir);
     if (*analyse_cmd) return run_analyse(analyse_args);
+    if (*report_cmd) return run_report(report_args);
     return info();
   } catch (const SceneFileError& e) {
     std::cerr << "runout: " << e.what() << "\n";
