@@ -48,7 +48,7 @@ XVFB = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24 -noreset -fbdir {fbdir}"
 # The overlays first: Runout Plastic Strain's particles take the run's place
 # (ParaView's default), the overlays must leave it shown. The history last:
 # its chart becomes the active view, where the others would not be shown.
-OVERLAY_FILTERS = ("RunoutShearBands", "RunoutHorstGraben", "RunoutMorphology")
+OVERLAY_FILTERS = ("RunoutShearBands", "RunoutHorstsAndGrabens", "RunoutMorphology")
 FILTERS = OVERLAY_FILTERS + ("RunoutPlasticStrain", "RunoutMorphologyHistory")
 # Every Runout filter has two outputs (ports 0 and 1).
 PORTS = 2
@@ -59,6 +59,7 @@ AXIS_TITLES = ["distance (m)", "time (s)"]
 SHELL = "pqClientMainWindow/pythonShellDock/pythonShell/consoleWidget"
 APPLY = "pqClientMainWindow/propertiesDock/propertiesPanel/Accept"
 MENU = "pqClientMainWindow/menubar/menuFilters/Alphabetical"
+SOURCES = "pqClientMainWindow/menubar/menuSources/Alphabetical"
 BROWSER = "pqClientMainWindow/pipelineBrowserDock/pipelineBrowser"
 VCR = "pqClientMainWindow/VCRToolbar/"
 # What ParaView prints for an error or a warning (the terminal copy of its
@@ -105,7 +106,11 @@ def events(steps, config):
     # the colours its step 4 has the user give (each a step of its own, so
     # that the screen is painted before it is saved).
     lines += [step("frame", ""), step("picture", "gui_layout"), step("style", ""),
-              step("picture", "gui_walkthrough"), step("finish", "")]
+              step("picture", "gui_walkthrough")]
+    # The plugin's reader from the Sources menu, as a user starts with it:
+    # made before a file is picked, it must wait for one without an error.
+    lines += [event(SOURCES, "activate", "RunoutSeriesReader"), step("new-reader", ""),
+              step("finish", "")]
     return "<?xml version=\"1.0\" ?>\n<pqevents>\n" + "\n".join(lines) + "\n</pqevents>\n"
 
 
@@ -245,6 +250,44 @@ def check_pictures(paths, failures):
                         "not recoloured")
 
 
+def check_new_reader(made, failures):
+    """Sources > Runout Series Reader made the reader, with no file and no
+    time steps yet (and, the log checks, without an error)."""
+    if not made.get("made"):
+        failures.append("Sources > Runout > Runout Series Reader made no reader")
+    elif made["file"] or made["steps"]:
+        failures.append(f"the new Runout Series Reader reads {made['file']!r} "
+                        f"({made['steps']} steps) before a file is picked")
+
+
+def check_state(state, run_pvd, failures):
+    """states/strain_bands.pvsm as scripts/paraview-state opened it on the
+    run, at its last frame: the Runout filters there, the reader on the
+    run, the camera on the slide as drawn (heights exaggerated), and the
+    strain's colours spanning the frame's strain."""
+    for name in ("RunoutShearBands", "RunoutHorstsAndGrabens"):
+        if name not in state["sources"]:
+            failures.append(f"state: {name} not loaded ({state['sources']})")
+    if os.path.realpath(state["file"]) != os.path.realpath(run_pvd):
+        failures.append(f"state: its reader reads {state['file']}, not the run's {run_pvd}")
+    if state["time"] != state["last"]:
+        failures.append(f"state: at t = {state['time']} after Last Frame, not {state['last']}")
+    b, scale = state["bounds"], state["exaggeration"]
+    centre = [(b[0] + b[1]) / 2 * scale[0], (b[2] + b[3]) / 2 * scale[1]]
+    off = [abs(f - c) for f, c in zip(state["focal"], centre)]
+    if max(off) > 1e-6 * (b[1] - b[0]):
+        failures.append(f"state: the camera looks at {state['focal'][:2]}, the slide's centre "
+                        f"is {centre} at the last frame: it does not follow the slide")
+    low, high = state["strain"]
+    if not (abs(state["map"][0] - low) <= 1e-6 * max(1.0, high)
+            and abs(state["map"][1] - high) <= 1e-6 * max(1.0, high)):
+        failures.append(f"state: the strain's colours span {state['map']}, the frame's strain "
+                        f"{state['strain']}")
+    print(f"state at t = {state['time']:g}: camera on x = {state['focal'][0]:.2f} "
+          f"(slide {b[0]:.2f} to {b[1]:.2f}), colours {state['map']} for strain "
+          f"{state['strain']}")
+
+
 def check_record(record, failures):
     steps = {step["tag"]: step for step in record["steps"]}
     if sorted(steps) != ["applied", "last", "opened", "overlays", "previous"]:
@@ -271,11 +314,11 @@ def check_record(record, failures):
         failures.append("the run's particles are hidden once the overlay filters are applied")
     if not rep("RunoutPlasticStrain", 0).get("visible"):
         failures.append("Runout Plastic Strain's particles are not shown after its Apply")
-    for source, port, kind in (("RunoutHorstGraben", 0, "Wireframe"),
+    for source, port, kind in (("RunoutHorstsAndGrabens", 0, "Wireframe"),
                                ("RunoutPlasticStrain", 1, "Outline")):
         if rep(source, port).get("representation") != kind:
             failures.append(f"{source} port {port} shown as {rep(source, port)}, not {kind}")
-    for source in ("RunoutShearBands", "RunoutHorstGraben", "RunoutMorphology"):
+    for source in ("RunoutShearBands", "RunoutHorstsAndGrabens", "RunoutMorphology"):
         if not rep(source, 0).get("visible"):
             failures.append(f"{source} is not shown in the render view")
     chart = rep("RunoutMorphologyHistory", 1, CHART)
@@ -286,14 +329,58 @@ def check_record(record, failures):
     check_opening(applied, failures)
     check_sheets(record.get("sheets", []), failures)
     check_pictures(record.get("pictures", []), failures)
+    check_new_reader(record.get("new_reader", {}), failures)
     times = [steps[t]["time"] for t in ("opened", "last", "previous")]
     if not times[0] < times[2] < times[1]:
         failures.append(f"times at open, last, previous frame: {times}")
     for tag in ("last", "previous"):
         check_step(steps[tag], failures)
+    for tag in ("applied", "last", "previous"):
+        grabens = steps[tag].get("grabens", {})
+        for column, value in grabens.get("morphology", {}).items():
+            if value != grabens["typed"]:
+                failures.append(f"{tag}: Runout Morphology's {column} is {value:g} where Runout "
+                                f"Horsts And Grabens types {grabens['typed']} blocks graben")
     for part in ("bands", "blocks"):
         if not steps["last"]["counts"].get(part, [0, 0])[1]:
             failures.append(f"no {part} at the last frame: the run shows nothing to check")
+
+
+def problem_lines(output):
+    """ParaView's error and warning lines, printed."""
+    problems = [line for line in output.splitlines() if PROBLEM.search(line)]
+    for line in problems:
+        print("paraview:", line)
+    return problems
+
+
+def open_state(source, run_dir, plugin_dir, paraview, work, env, failures):
+    """scripts/paraview-state on the run in the real GUI, with a --script
+    that records the state at the last frame (gui_steps.py's "state")."""
+    config = os.path.join(work, "state_config.json")
+    result = os.path.join(work, "state.json")
+    with open(config, "w") as f:
+        json.dump({"result": result, "states": os.path.join(source, "states")}, f)
+    script = os.path.join(work, "state_script.py")
+    steps = os.path.join(source, "tests", "gui_steps.py")
+    with open(script, "w") as f:
+        f.write(f"exec(open({steps!r}).read()); runout_gui_step('state', '', {config!r})\n")
+    env = dict(env, RUNOUT_PARAVIEW=paraview, RUNOUT_PLUGIN_DIR=plugin_dir)
+    proc = subprocess.run(XVFB[:-1] + ["-screen 0 1600x1000x24 -noreset", "timeout", "-k", "5",
+                                       "120", os.path.join(source, "scripts", "paraview-state"),
+                                       run_dir, os.path.join(source, "states",
+                                                             "strain_bands.pvsm"),
+                                       "--script=" + script, "--dr"],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    problems = problem_lines(proc.stdout)
+    if problems:
+        failures.append(f"{len(problems)} error or warning lines from paraview --state")
+    if not os.path.isfile(result):
+        print(proc.stdout)
+        failures.append("scripts/paraview-state: the state's check did not run (no record)")
+        return
+    with open(result) as f:
+        check_state(json.load(f), os.path.join(run_dir, "default.pvd"), failures)
 
 
 def main():
@@ -344,9 +431,7 @@ def main():
                               env=env)
         print(f"paraview ran {time.time() - start:.0f} s, exit {proc.returncode}")
         failures = []
-        problems = [line for line in proc.stdout.splitlines() if PROBLEM.search(line)]
-        for line in problems:
-            print("paraview:", line)
+        problems = problem_lines(proc.stdout)
         if problems:
             failures.append(f"{len(problems)} error or warning lines from paraview")
         if not os.path.isfile(result):
@@ -356,6 +441,7 @@ def main():
         with open(result) as f:
             record = json.load(f)
         check_record(record, failures)
+        open_state(source, run_dir, plugin_dir, paraview, work, env, failures)
         fail(failures)
     finally:
         shutil.rmtree(work, ignore_errors=True)

@@ -171,7 +171,7 @@ TEST(RunoutMorphology, TranslatedBlockHasItsRunoutAndSlidesAsABlock) {
   EXPECT_EQ(value(table, "outside_mass"), 0.0);
   EXPECT_DOUBLE_EQ(value(table, "length_ratio"), 1.0);
   EXPECT_DOUBLE_EQ(value(table, "thickness_ratio"), 1.0);
-  EXPECT_EQ(value(table, "grabens"), 0);
+  EXPECT_EQ(value(table, "troughs"), 0);
   EXPECT_EQ(mechanism(table), "block sliding");
   EXPECT_EQ(value(table, "mechanism_id"), static_cast<int>(Mechanism::BlockSliding));
 
@@ -242,7 +242,7 @@ TEST(RunoutMorphology, ThinningLengtheningSlabIsElongationNotBlockSliding) {
   EXPECT_DOUBLE_EQ(value(table, "length_ratio"), 59.875 / 40.0);
   EXPECT_DOUBLE_EQ(value(table, "thickness_ratio"), (3.875 / 1.5 + 0.125) / 4.0);
   EXPECT_DOUBLE_EQ(value(table, "runout"), 5.0 + 1.5 * 39.875 + 0.125 - 40.0);
-  EXPECT_EQ(value(table, "grabens"), 0);
+  EXPECT_EQ(value(table, "troughs"), 0);
   EXPECT_EQ(mechanism(table), "elongation");
 
   // The same slab only translated slides as a block.
@@ -257,7 +257,7 @@ TEST(RunoutMorphology, NarrowDipsOfAThinningSlabAreNotGrabens) {
     if (static_cast<int>(p.x0[i] / kSpacing) % 8 == 0) p.y[i] *= 0.7;
   Morphology m;
   vtkTable* table = m.run(frame(p, 8.0));
-  EXPECT_EQ(value(table, "grabens"), 0);
+  EXPECT_EQ(value(table, "troughs"), 0);
   EXPECT_EQ(mechanism(table), "elongation");
 }
 
@@ -272,8 +272,8 @@ TEST(RunoutMorphology, DroppedBlocksBetweenHorstsAreSpreading) {
   Morphology m;
   vtkTable* table = m.run(frame(p, 20.0));
   EXPECT_EQ(m.counter->errors, 0) << m.counter->last;
-  EXPECT_EQ(value(table, "grabens"), 2);
-  EXPECT_EQ(value(table, "initial_grabens"), 0);
+  EXPECT_EQ(value(table, "troughs"), 2);
+  EXPECT_EQ(value(table, "initial_troughs"), 0);
   EXPECT_EQ(mechanism(table), "spreading");
 }
 
