@@ -346,12 +346,25 @@ def check_record(record, failures):
             failures.append(f"no {part} at the last frame: the run shows nothing to check")
 
 
-def problem_lines(output):
-    """ParaView's error and warning lines, printed."""
-    problems = [line for line in output.splitlines() if PROBLEM.search(line)]
+def run_gui(command, env, what, result, failures):
+    """Runs ParaView's GUI; its record (the JSON file `result` that its
+    Python steps write), or None. Each error or warning line it prints, and
+    a missing record, is a failure of `what`."""
+    start = time.time()
+    proc = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                          env=env)
+    print(f"{what} ran {time.time() - start:.0f} s, exit {proc.returncode}")
+    problems = [line for line in proc.stdout.splitlines() if PROBLEM.search(line)]
     for line in problems:
         print("paraview:", line)
-    return problems
+    if problems:
+        failures.append(f"{len(problems)} error or warning lines from {what}")
+    if not os.path.isfile(result):
+        print(proc.stdout)
+        failures.append(f"{what}: its Python steps did not finish (no record)")
+        return None
+    with open(result) as f:
+        return json.load(f)
 
 
 def open_state(source, run_dir, plugin_dir, paraview, work, env, failures):
@@ -365,22 +378,16 @@ def open_state(source, run_dir, plugin_dir, paraview, work, env, failures):
     steps = os.path.join(source, "tests", "gui_steps.py")
     with open(script, "w") as f:
         f.write(f"exec(open({steps!r}).read()); runout_gui_step('state', '', {config!r})\n")
-    env = dict(env, RUNOUT_PARAVIEW=paraview, RUNOUT_PLUGIN_DIR=plugin_dir)
-    proc = subprocess.run(XVFB[:-1] + ["-screen 0 1600x1000x24 -noreset", "timeout", "-k", "5",
-                                       "120", os.path.join(source, "scripts", "paraview-state"),
-                                       run_dir, os.path.join(source, "states",
-                                                             "strain_bands.pvsm"),
-                                       "--script=" + script, "--dr"],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
-    problems = problem_lines(proc.stdout)
-    if problems:
-        failures.append(f"{len(problems)} error or warning lines from paraview --state")
-    if not os.path.isfile(result):
-        print(proc.stdout)
-        failures.append("scripts/paraview-state: the state's check did not run (no record)")
-        return
-    with open(result) as f:
-        check_state(json.load(f), os.path.join(run_dir, "default.pvd"), failures)
+    # The wrapper puts the plugin in PV_PLUGIN_PATH itself.
+    env = {k: v for k, v in env.items() if k != "PV_PLUGIN_PATH"}
+    env.update(RUNOUT_PARAVIEW=paraview, RUNOUT_PLUGIN_DIR=plugin_dir)
+    state = run_gui(XVFB[:-1] + ["-screen 0 1600x1000x24 -noreset", "timeout", "-k", "5", "120",
+                                 os.path.join(source, "scripts", "paraview-state"), run_dir,
+                                 os.path.join(source, "states", "strain_bands.pvsm"),
+                                 "--script=" + script, "--dr"],
+                    env, "scripts/paraview-state", result, failures)
+    if state is not None:
+        check_state(state, os.path.join(run_dir, "default.pvd"), failures)
 
 
 def main():
@@ -415,31 +422,21 @@ def main():
         # A HOME of its own: no settings or recent files of the user's.
         env = dict(os.environ, HOME=os.path.join(work, "home"), PV_PLUGIN_PATH=plugin_dir)
         os.makedirs(env["HOME"])
-        start = time.time()
         # timeout inside xvfb-run: a hung GUI is killed, not left running.
         xvfb = XVFB[:-1] + [XVFB[-1].format(fbdir=fbdir)]
-        proc = subprocess.run(xvfb + ["timeout", "-k", "5", "200", paraview,
-                                      "--data=" + os.path.join(run_dir, "default.pvd"),
-                                      "--test-script=" + script, "--exit",
-                                      # No settings: no Welcome dialog, which
-                                      # would stop the event player.
-                                      "--dr",
-                                      # The screen's size (no window manager
-                                      # to maximise it), for the pictures.
-                                      "-geometry", "1600x1000+0+0"],
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                              env=env)
-        print(f"paraview ran {time.time() - start:.0f} s, exit {proc.returncode}")
         failures = []
-        problems = problem_lines(proc.stdout)
-        if problems:
-            failures.append(f"{len(problems)} error or warning lines from paraview")
-        if not os.path.isfile(result):
-            print(proc.stdout)
-            failures.append("the GUI steps did not finish (no record)")
+        record = run_gui(xvfb + ["timeout", "-k", "5", "200", paraview,
+                                 "--data=" + os.path.join(run_dir, "default.pvd"),
+                                 "--test-script=" + script, "--exit",
+                                 # No settings: no Welcome dialog, which
+                                 # would stop the event player.
+                                 "--dr",
+                                 # The screen's size (no window manager
+                                 # to maximise it), for the pictures.
+                                 "-geometry", "1600x1000+0+0"],
+                         env, "paraview", result, failures)
+        if record is None:
             fail(failures)
-        with open(result) as f:
-            record = json.load(f)
         check_record(record, failures)
         open_state(source, run_dir, plugin_dir, paraview, work, env, failures)
         fail(failures)
