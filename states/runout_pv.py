@@ -8,7 +8,7 @@ slide.
 Import it from a script in this folder (the scripts put their own folder
 first on sys.path, pvbatch does not always).
 """
-from paraview import simple
+from paraview import servermanager, simple
 
 from state_on_run import find_pvd  # noqa: F401 (the scripts take it from here)
 
@@ -151,8 +151,11 @@ def follow_slide(view, reader, exaggeration=EXAGGERATION):
     track.Mode = "Follow-data"
     track.DataSource = target
     # The track reports "too few keyframes" on every frame without two,
-    # which Follow Data does not read.
-    track.KeyFrames = [simple.CameraKeyFrame(KeyTime=0.0), simple.CameraKeyFrame(KeyTime=1.0)]
+    # which Follow Data does not read; registered, or a state leaves them out.
+    frames = [simple.CameraKeyFrame(KeyTime=t) for t in (0.0, 1.0)]
+    for k, frame in enumerate(frames):
+        servermanager.ProxyManager().RegisterProxy("animation", f"camera key frame {k}", frame)
+    track.KeyFrames = frames
     return track
 
 

@@ -319,7 +319,8 @@ def _state_on_run(view):
     reader = simple.FindSource("run")
     scene = simple.GetAnimationScene()
     scene.AnimationTime = reader.TimestepValues[-1]
-    simple.Render(view)
+    # Not simple.Render: its first call in a session resets the camera.
+    view.StillRender()
     info = reader.GetDataInformation()
     points = simple.GetColorTransferFunction("plastic_shear_strain").RGBPoints
     return {"sources": sorted(s.GetXMLName() for s in simple.GetSources().values()),

@@ -79,13 +79,22 @@ def event(obj, command, arguments=""):
     return f'  <pqevent object="{obj}" command="{command}" arguments="{quote}" />'
 
 
+def shell_step(steps, config, what, tag=""):
+    """The event that runs gui_steps.py's step in the GUI's Python shell."""
+    return event(SHELL, "executeCommand",
+                 f"exec(open({steps!r}).read()); runout_gui_step({what!r}, {tag!r}, {config!r})")
+
+
+def events_of(lines):
+    """A test script of ParaView's event player."""
+    return "<?xml version=\"1.0\" ?>\n<pqevents>\n" + "\n".join(lines) + "\n</pqevents>\n"
+
+
 def events(steps, config):
     """The test script: Apply on the opened run, every filter on the run,
     then the first frame, the last, and back one."""
     def step(what, tag):
-        return event(SHELL, "executeCommand",
-                     f"exec(open({steps!r}).read()); runout_gui_step({what!r}, {tag!r}, "
-                     f"{config!r})")
+        return shell_step(steps, config, what, tag)
     lines = [event(APPLY, "activate"), step("record", "opened")]
     for name in FILTERS:
         # The run selected in the Pipeline Browser (its first source).
@@ -111,7 +120,7 @@ def events(steps, config):
     # made before a file is picked, it must wait for one without an error.
     lines += [event(SOURCES, "activate", "RunoutSeriesReader"), step("new-reader", ""),
               step("finish", "")]
-    return "<?xml version=\"1.0\" ?>\n<pqevents>\n" + "\n".join(lines) + "\n</pqevents>\n"
+    return events_of(lines)
 
 
 def pixels(path):
@@ -374,17 +383,19 @@ def open_state(source, run_dir, plugin_dir, paraview, work, env, failures):
     result = os.path.join(work, "state.json")
     with open(config, "w") as f:
         json.dump({"result": result, "states": os.path.join(source, "states")}, f)
-    script = os.path.join(work, "state_script.py")
-    steps = os.path.join(source, "tests", "gui_steps.py")
+    # A test script of one event, the step in the Python shell (paraview
+    # refuses --script beside --state).
+    script = os.path.join(work, "state_events.xml")
     with open(script, "w") as f:
-        f.write(f"exec(open({steps!r}).read()); runout_gui_step('state', '', {config!r})\n")
+        f.write(events_of([shell_step(os.path.join(source, "tests", "gui_steps.py"), config,
+                                      "state")]))
     # The wrapper puts the plugin in PV_PLUGIN_PATH itself.
     env = {k: v for k, v in env.items() if k != "PV_PLUGIN_PATH"}
     env.update(RUNOUT_PARAVIEW=paraview, RUNOUT_PLUGIN_DIR=plugin_dir)
     state = run_gui(XVFB[:-1] + ["-screen 0 1600x1000x24 -noreset", "timeout", "-k", "5", "120",
                                  os.path.join(source, "scripts", "paraview-state"), run_dir,
                                  os.path.join(source, "states", "strain_bands.pvsm"),
-                                 "--script=" + script, "--dr"],
+                                 "--test-script=" + script, "--dr"],
                     env, "scripts/paraview-state", result, failures)
     if state is not None:
         check_state(state, os.path.join(run_dir, "default.pvd"), failures)
