@@ -23,7 +23,17 @@ It fails on any error or warning ParaView prints, and unless
   pixels, those pixels lie within the particles' picture, and in the
   picture as the GUI shows it most of them still have the overlay's colour
   (it is drawn, not covered), while most of the particles' pixels still
-  differ from the background (not covered by the outlines' polygons).
+  differ from the background (not covered by the outlines' polygons);
+- Sources > Runout Series Reader, made after the walk-through, waits for
+  its file (no time steps, no message);
+- Runout Morphology reports no count named after grabens that differs from
+  the blocks Runout Horsts And Grabens types graben.
+Then it opens states/strain_bands.pvsm on the run with
+scripts/paraview-state (--test-script: paraview refuses --script beside
+--state), and fails on any error or warning, and unless at the run's last
+frame the Runout filters are there, the reader reads the run, the camera
+looks at the centre of the slide as drawn and the strain's colour map spans
+the frame's strain.
 
 Run by pvpython (for VTK's PNG reader and numpy):
   pvpython tests/gui_walkthrough.py SOURCE_DIR RUNOUT_CLI PLUGIN_DIR PARAVIEW [KEEP_DIR]
