@@ -8,11 +8,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "csv_table.hpp"
 #include "lattice_fixtures.hpp"
 #include "runout/analysis/frame_base.hpp"
 #include "runout/analysis/frame_checks.hpp"
@@ -430,6 +432,61 @@ TEST(MorphologyRules, MechanismRuleInItsOrder) {
   EXPECT_EQ(classify_mechanism(E{NAN, 1.0, 0.5, 0, 0}), Mechanism::Undetermined);
   EXPECT_STREQ(runout::analysis::mechanism_name(Mechanism::BlockSliding), "block sliding");
   EXPECT_STREQ(runout::analysis::mechanism_name(Mechanism::Undetermined), "undetermined");
+}
+
+// With the travel of its series the class reads how the slide moved after
+// its start: a block whose faces slumped (L / L0 = 1.6, Hmax / H0 = 0.6,
+// case 3's numbers) is block sliding, not elongation.
+TEST(MorphologyRules, LateStretchDecidesBetweenBlockAndElongation) {
+  using runout::analysis::classify_mechanism;
+  using E = runout::analysis::MechanismEvidence;
+  EXPECT_EQ(classify_mechanism(E{1.6, 0.6, 5.0, 0, 0, 0.02}), Mechanism::BlockSliding);
+  EXPECT_EQ(classify_mechanism(E{1.6, 0.6, 5.0, 0, 0, 0.49}), Mechanism::BlockSliding);
+  EXPECT_EQ(classify_mechanism(E{1.1, 0.9, 0.4, 0, 0, 0.5}), Mechanism::Elongation);
+  EXPECT_EQ(classify_mechanism(E{1.1, 0.9, 0.4, 1, 0, 0.0}), Mechanism::Spreading);
+  EXPECT_EQ(classify_mechanism(E{1.5, 0.6, 0.05, 0, 0, 1.0}), Mechanism::Undetermined);
+}
+
+TEST(MorphologyRules, LateStretchOverTheSecondHalfOfTheTravel) {
+  using runout::analysis::late_stretch;
+  // A block of 50 m that grew to 80 m over its first 20 m of travel, then
+  // slid 80 m more at that length: none of the late travel stretched it.
+  EXPECT_NEAR(late_stretch({{0, 50}, {20, 80}, {60, 80}, {100, 80}}), 0.0, 1e-12);
+  // The rear held still while the toe ran 40 m: all of it.
+  EXPECT_NEAR(late_stretch({{0, 50}, {10, 60}, {40, 90}}), 1.0, 1e-12);
+  // Half the toe's speed at the rear: a half; L at R / 2 = 20 m
+  // interpolated between the samples at 10 and 30 m (L = 55 and 65).
+  EXPECT_NEAR(late_stretch({{0, 50}, {10, 55}, {30, 65}, {40, 70}}), 0.5, 1e-12);
+  EXPECT_TRUE(std::isnan(late_stretch({{0, 50}})));
+  EXPECT_TRUE(std::isnan(late_stretch({{0, 50}, {0, 50}})));
+  EXPECT_TRUE(std::isnan(late_stretch({})));
+}
+
+// The recorded reference runs (docs/data, 0.1 m cells, 4 x 4 particles):
+// case 2 is an elongation and case 3 block sliding by their histories'
+// travel (measured: late stretch 1.00 and 0.020), though case 3 is 1.69
+// times as long as it started. Their frames are not kept, so no grabens.
+TEST(MorphologyRules, ReferenceRunsClassedByTheirTravel) {
+  const auto evidence = [](const std::string& file) {
+    const runout::csv_table::Table h = runout::csv_table::read_table(
+        std::string(RUNOUT_SOURCE_DIR) + "/docs/data/" + file);
+    std::vector<runout::analysis::TravelSample> travel;
+    for (std::size_t k = 0; k < h.rows.size(); ++k)
+      travel.push_back({h.number(k, "runout"), h.number(k, "length")});
+    const std::size_t last = h.rows.size() - 1;
+    runout::analysis::MechanismEvidence e;
+    e.length_ratio = h.number(last, "length") / h.number(0, "length");
+    e.thickness_ratio = h.number(last, "max_thickness") / h.number(0, "max_thickness");
+    e.runout_ratio = h.number(last, "runout") / h.number(0, "length");
+    e.late_stretch = runout::analysis::late_stretch(travel);
+    std::printf("%s: L / L0 %.2f, Hmax / H0 %.2f, runout / L0 %.2f, late stretch %.3f\n",
+                file.c_str(), e.length_ratio, e.thickness_ratio, e.runout_ratio, e.late_stretch);
+    return e;
+  };
+  using runout::analysis::classify_mechanism;
+  EXPECT_EQ(classify_mechanism(evidence("case2_0.1m_4x4_history.csv")), Mechanism::Elongation);
+  EXPECT_EQ(classify_mechanism(evidence("case3_0.1m_4x4_cpu_history.csv")),
+            Mechanism::BlockSliding);
 }
 
 TEST(MorphologyRules, TranslatedBlockFromItsArrays) {

@@ -49,8 +49,8 @@ TEST_F(Cli, VersionAndHelp) {
 
 // OpenMP threads spin briefly at barriers, then sleep, unless the user
 // chose otherwise: spinning ones made two threads half as fast as one
-// beside another busy process, sleeping at once cost an idle run 7 % (README,
-// "Performance").
+// beside another busy process, sleeping at once cost an idle run 7 % (docs/performance.md,
+// "Runs under load").
 TEST_F(Cli, OpenMpWaitsBrieflyUnlessTheUserSetsThePolicyOrTheSpins) {
   const auto saved = [](const char* name) {
     const char* value = std::getenv(name);

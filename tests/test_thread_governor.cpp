@@ -30,8 +30,8 @@ constexpr GovernorWindow kWindow{20, 0.0};
 constexpr long kProbeBound = 100000 / ThreadGovernor::kMaxHold + 5 * kWindow.steps;
 
 // A 2-vCPU machine: idle, two threads 1.8 times one; beside a busy
-// process, two threads slower than one (README, "Whole runs and runs
-// under load").
+// process, two threads slower than one (docs/performance.md, "Threads"
+// and "Runs under load").
 double idle(int threads) { return threads == 2 ? 1.0 / 1.8 : 1.0; }
 double loaded(int threads) { return threads == 2 ? 1.1 : 1.0; }
 

@@ -92,10 +92,31 @@ Mechanism classify_mechanism(const MechanismEvidence& e) {
       !std::isfinite(e.runout_ratio))
     return Mechanism::Undetermined;
   if (e.grabens > e.initial_grabens) return Mechanism::Spreading;
+  if (std::isfinite(e.late_stretch)) {
+    if (e.runout_ratio < kMovedFraction) return Mechanism::Undetermined;
+    return e.late_stretch >= kLateStretch ? Mechanism::Elongation : Mechanism::BlockSliding;
+  }
   if (e.length_ratio >= kElongationLengthRatio) return Mechanism::Elongation;
   if (e.thickness_ratio > kBlockThicknessRatio && e.runout_ratio >= kMovedFraction)
     return Mechanism::BlockSliding;
   return Mechanism::Undetermined;
+}
+
+double late_stretch(const std::vector<TravelSample>& samples) {
+  if (samples.size() < 2 || !(samples.back().runout > 0.0))
+    return std::numeric_limits<double>::quiet_NaN();
+  const TravelSample now = samples.back();
+  const double half = 0.5 * now.runout;
+  double length_half = samples.front().length;
+  for (std::size_t k = 1; k < samples.size(); ++k) {
+    const TravelSample a = samples[k - 1], b = samples[k];
+    if (b.runout < half) continue;
+    const double f =
+        b.runout > a.runout ? std::clamp((half - a.runout) / (b.runout - a.runout), 0.0, 1.0) : 1.0;
+    length_half = a.length + f * (b.length - a.length);
+    break;
+  }
+  return (now.length - length_half) / (now.runout - half);
 }
 
 runout::Particles morphology_particles(const std::vector<double>& xyz,
@@ -136,6 +157,11 @@ FrameMorphology measure_frame(const runout::Particles& particles, const runout::
       count_grabens(main_body_thickness(initial, base, spacing, m.initial, h0), spacing, h0);
   m.mechanism = classify_mechanism(m.evidence);
   return m;
+}
+
+void classify_by_travel(FrameMorphology& m, const std::vector<TravelSample>& samples) {
+  m.evidence.late_stretch = late_stretch(samples);
+  m.mechanism = classify_mechanism(m.evidence);
 }
 
 }  // namespace runout::analysis

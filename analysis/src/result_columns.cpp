@@ -75,6 +75,7 @@ const std::vector<Column<FrameMorphology>>& morphology_columns() {
       measure("initial_toe", [](const M& m) { return m.initial.toe_s; }),
       measure("length_ratio", [](const M& m) { return m.evidence.length_ratio; }),
       measure("thickness_ratio", [](const M& m) { return m.evidence.thickness_ratio; }),
+      measure("late_stretch", [](const M& m) { return m.evidence.late_stretch; }),
       count("particles", [](const M& m) { return m.now.particles; }),
       // Troughs of the surface, not grabens: Runout Horsts And Grabens
       // calls a graben a block between shear bands, which this rule does

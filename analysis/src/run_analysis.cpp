@@ -131,6 +131,13 @@ RunAnalysis analyse_run(const std::string& pvd_path, const AnalysisParameters& p
     }
     run.frames.push_back(std::move(frame));
   }
+  // Each frame's class from the travel up to it, so that a block whose
+  // faces slumped early is not called an elongation for that slump.
+  std::vector<TravelSample> travel;
+  for (FrameAnalysis& frame : run.frames) {
+    travel.push_back({frame.morphology.runout, frame.morphology.now.length});
+    classify_by_travel(frame.morphology, travel);
+  }
   return run;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// How the CLI's OpenMP threads wait at a barrier (README, "Whole runs and
-// runs under load").
+// How the CLI's OpenMP threads wait at a barrier (docs/performance.md,
+// "Runs under load").
 
 namespace runout::cli {
 

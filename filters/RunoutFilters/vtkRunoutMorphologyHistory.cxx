@@ -3,6 +3,7 @@
 #include "FrameArrays.h"
 #include "MorphologyFrame.h"
 
+#include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
@@ -13,6 +14,7 @@
 #include "vtkTable.h"
 
 #include <utility>
+#include <vector>
 
 vtkStandardNewMacro(vtkRunoutMorphologyHistory);
 
@@ -85,6 +87,25 @@ int vtkRunoutMorphologyHistory::RequestUpdateExtent(
   return 1;
 }
 
+namespace
+{
+// The runout and length of the rows gathered so far, then the frame's own:
+// the travel the mechanism class reads (morphology_rules.hpp).
+std::vector<runout::analysis::TravelSample> TravelWith(
+  vtkTable* history, const runout::analysis::FrameMorphology& frame)
+{
+  std::vector<runout::analysis::TravelSample> travel;
+  vtkDataArray* runout = vtkDataArray::SafeDownCast(history->GetColumnByName("runout"));
+  vtkDataArray* length = vtkDataArray::SafeDownCast(history->GetColumnByName("length"));
+  for (vtkIdType row = 0; runout && length && row < history->GetNumberOfRows(); ++row)
+  {
+    travel.push_back({ runout->GetComponent(row, 0), length->GetComponent(row, 0) });
+  }
+  travel.push_back({ frame.runout, frame.now.length });
+  return travel;
+}
+}
+
 //------------------------------------------------------------------------------
 int vtkRunoutMorphologyHistory::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -123,6 +144,7 @@ int vtkRunoutMorphologyHistory::RequestData(
     this->History->Initialize();
     return 1;
   }
+  runout::analysis::classify_by_travel(morphology, TravelWith(this->History, morphology));
   runout::filters::append_morphology_row(
     this->History, runout::filters::frame_time_of(input), morphology);
   return this->NextTimeStep(request, outputVector);

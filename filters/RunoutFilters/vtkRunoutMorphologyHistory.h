@@ -19,7 +19,10 @@
  * (initial position), the engine's `velocity`, `mass` and
  * `initial_position` by default.
  *
- * A frame without points gives its row with NaN lengths; a frame with
+ * Each row's `mechanism` is classed with the travel up to its time (the
+ * late stretch of morphology_rules.hpp), as `runout analyse` classes it.
+ *
+ * A frame without points is skipped with a warning; a frame with
  * points but without one of the arrays vtkRunoutMorphology needs stops the
  * iteration with an error naming the array, and the output is empty.
  */

@@ -6,6 +6,7 @@
 // measure_slide and slide_profile (docs/morphology.md), so they are the
 // numbers of the run's history.csv; this file adds the comparison with the
 // initial configuration and the mechanism rule.
+#include <limits>
 #include <vector>
 
 #include "runout/base.hpp"
@@ -34,6 +35,7 @@ constexpr double kMovedFraction = 0.1;            // runout / L0 from which it h
 constexpr double kTroughDepthFraction = 0.2;      // trough depth / its lower flank
 constexpr double kTroughDepthSpacings = 2.0;      // trough depth, in particle spacings
 constexpr double kHorstThicknessFraction = 0.5;   // flank thickness / H0 of a horst
+constexpr double kLateStretch = 0.5;              // dL / dR over an elongation's late travel
 
 // Morphological closing of a profile: the largest value within half_window
 // bins, then the smallest of those within half_window bins. It fills every
@@ -60,13 +62,32 @@ struct MechanismEvidence {
   double runout_ratio = 0;     // runout / L0
   int grabens = 0;
   int initial_grabens = 0;
+  double late_stretch = std::numeric_limits<double>::quiet_NaN();  // NaN: no series
 };
 
 // In this order: spreading when grabens have formed since t = 0 (more than
-// initially); elongation when L / L0 >= kElongationLengthRatio; block
-// sliding when Hmax / H0 > kBlockThicknessRatio and runout / L0 >=
-// kMovedFraction; undetermined otherwise, and for non-finite ratios.
+// initially); then, where the frame's series gives the late stretch, for a
+// slide moved by runout / L0 >= kMovedFraction: elongation when it is at
+// least kLateStretch, block sliding below; without it (one frame alone):
+// elongation when L / L0 >= kElongationLengthRatio, block sliding when
+// Hmax / H0 > kBlockThicknessRatio and runout / L0 >= kMovedFraction;
+// undetermined otherwise, and for non-finite ratios.
 Mechanism classify_mechanism(const MechanismEvidence& evidence);
+
+// The slide's runout and main-body length at one time of its series.
+struct TravelSample {
+  double runout = 0;
+  double length = 0;
+};
+
+// How much of the toe's late travel went into lengthening the slide rather
+// than carrying its rear: (L_now - L_half) / (R_now / 2) over the second
+// half of the runout so far, L_half interpolated where the runout first
+// reached R_now / 2; samples in time order, the last one now. About 0 for
+// a block that slides on after its faces slumped, about 1 for a slide
+// whose rear stays while its front runs on. NaN with fewer than two
+// samples or no runout yet.
+double late_stretch(const std::vector<TravelSample>& samples);
 
 struct FrameMorphology {
   runout::SlideMorphology now;      // the frame
@@ -96,5 +117,9 @@ runout::Particles morphology_particles(const std::vector<double>& xyz,
 // undetermined.
 FrameMorphology measure_frame(const runout::Particles& particles, const runout::BaseView& base,
                               double spacing, double bin_width);
+
+// m classified again with the late stretch of its series (`samples`, in
+// time order, ending with m's own runout and length).
+void classify_by_travel(FrameMorphology& m, const std::vector<TravelSample>& samples);
 
 }  // namespace runout::analysis
