@@ -45,7 +45,8 @@ const std::vector<Column<SlideBlock>>& block_columns();
 // kTimeColumn): toe, rear, length, max_thickness, runout, toe_velocity,
 // centroid_x, centroid_y, centroid_s, centroid_velocity, outside_mass,
 // initial_toe, length_ratio, thickness_ratio (NaN, all of them, for a frame
-// without particles), particles, troughs, initial_troughs, mechanism_id,
+// without particles), late_stretch (NaN without the frames before),
+// particles, troughs, initial_troughs, mechanism_id,
 // mechanism.
 // "Time", not "time": ParaView's line chart takes a column of that name as
 // its x axis, so the morphology history plots against time as it opens.
