@@ -100,22 +100,15 @@ vtkSmartPointer<vtkUnstructuredGrid> frame(const Particles& p, double time,
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> velocity, mass, initial;
-  velocity->SetName("velocity");
-  velocity->SetNumberOfComponents(3);
-  mass->SetName("mass");
-  initial->SetName("initial_position");
-  initial->SetNumberOfComponents(3);
+  runout::filter_fixtures::MorphologyArrays arrays;
   for (int i = 0; i < p.size(); ++i) {
     points->InsertNextPoint(p.x[i], p.y[i], 0.0);
-    velocity->InsertNextTuple3(p.vx[i], p.vy[i], 0.0);
-    mass->InsertNextValue(p.mass[i]);
-    initial->InsertNextTuple3(p.x0[i], p.y0[i], 0.0);
+    arrays.velocity->InsertNextTuple3(p.vx[i], p.vy[i], 0.0);
+    arrays.mass->InsertNextValue(p.mass[i]);
+    arrays.initial->InsertNextTuple3(p.x0[i], p.y0[i], 0.0);
   }
   grid->SetPoints(points);
-  grid->GetPointData()->AddArray(velocity);
-  grid->GetPointData()->AddArray(mass);
-  grid->GetPointData()->AddArray(initial);
+  arrays.add_to(grid->GetPointData());
   add_field(grid, "TimeValue", 1, {time});
   add_field(grid, "particle_spacing", 1, {kSpacing});
   std::vector<double> base;

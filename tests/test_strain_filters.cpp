@@ -536,20 +536,13 @@ TEST(HorstGrabenFilter, MorphologyNamesNoOtherGrabenCount) {
   auto frame = to_frame(make_lattice(slab), slab.h);
   // What Runout Morphology reads besides the positions: the particles at
   // rest, of unit mass, where they started.
-  vtkNew<vtkDoubleArray> velocity, mass, initial;
-  velocity->SetName("velocity");
-  velocity->SetNumberOfComponents(3);
-  mass->SetName("mass");
-  initial->SetName("initial_position");
-  initial->SetNumberOfComponents(3);
+  runout::filter_fixtures::MorphologyArrays arrays;
   for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i) {
-    velocity->InsertNextTuple3(0.0, 0.0, 0.0);
-    mass->InsertNextValue(1.0);
-    initial->InsertNextTuple(frame->GetPoint(i));
+    arrays.velocity->InsertNextTuple3(0.0, 0.0, 0.0);
+    arrays.mass->InsertNextValue(1.0);
+    arrays.initial->InsertNextTuple(frame->GetPoint(i));
   }
-  frame->GetPointData()->AddArray(velocity);
-  frame->GetPointData()->AddArray(mass);
-  frame->GetPointData()->AddArray(initial);
+  arrays.add_to(frame->GetPointData());
 
   vtkNew<vtkRunoutHorstGraben> blocks;
   blocks->SetInputData(frame);
