@@ -2,7 +2,8 @@
 every filter and reader that its server-manager XML files define is in the
 "Runout" category of the Filters or Sources menu, under the Python name
 ParaView gives it, which is its XML name (the name state files and
-ParaView's messages use) and the one docs/filters.md shows, with a menu icon that is a 32 x 32 PNG of RunoutIcons.qrc. With
+ParaView's messages use) and the one docs/filters.md shows, with a menu
+icon that is a 32 x 32 PNG of RunoutIcons.qrc. With
 RUNOUT_PLUGIN_ICONS=ON (the build found Qt's rcc) the plugin must hold
 each icon (its bytes and its name, which rcc stores as UTF-16): the GUI
 looks the icon up there, and one missing shows as no icon, silently.
