@@ -12,6 +12,7 @@ import argparse
 import os
 import re
 import sys
+import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -19,6 +20,7 @@ from paraview import simple  # noqa: E402
 
 import figures  # noqa: E402
 import runout_pv  # noqa: E402
+from state_on_run import write_state_on_run  # noqa: E402
 
 
 def state_filters(state):
@@ -28,8 +30,8 @@ def state_filters(state):
 
 
 def load(state, run_dir, plugin):
-    """LoadState with the state's reader (registered as "run") pointed at
-    the run's .pvd, whatever its name."""
+    """LoadState of the state with its reader pointed at the run's .pvd,
+    whatever its name (the copy scripts/paraview-state opens in the GUI)."""
     try:
         runout_pv.load_plugin(plugin)
     except RuntimeError:
@@ -38,11 +40,9 @@ def load(state, run_dir, plugin):
         # ParaView's state loader would print two errors per Runout proxy
         # and drop them: one line instead.
         sys.exit(f"ERROR: the Runout plugin is not loaded ({plugin}): not loading {state}")
-    with open(state) as f:
-        reader_id = re.search(r'<Proxy group="sources" type="PVDReader" id="(\d+)"',
-                              f.read()).group(1)
-    simple.LoadState(state, filenames=[{"name": "run", "id": reader_id,
-                                        "FileName": runout_pv.find_pvd(run_dir)}])
+    with tempfile.TemporaryDirectory() as folder:
+        simple.LoadState(write_state_on_run(state, run_dir,
+                                            os.path.join(folder, os.path.basename(state))))
 
 
 def main():

@@ -5,11 +5,13 @@ reproducible (states/README.md says how to open them on any run):
                       by plastic shear strain, the base, the shear band
                       skeletons (Runout Shear Bands, red) and the block
                       outlines (Runout Horsts And Grabens, black), heights
-                      exaggerated 3 times, at the run's last frame.
+                      exaggerated 3 times, at the run's last frame; the
+                      colours span the strain of the frame shown and the
+                      camera follows the slide.
 
 Usage (a coarse run of the default scene is enough; the run's folder is
-replaced in the state by /path/to/run, which LoadState's data directory or
-states/load_state.py replaces again):
+replaced in the state by /path/to/run, which scripts/paraview-state and
+states/load_state.py replace with the run they are given):
   build/engine/runout run --cell 1.0 --ppc 2 --end 10 --out /tmp/staterun -q
   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \\
     pvbatch states/make_states.py /tmp/staterun [--plugin RunoutPlugin.so] [--out states]
@@ -44,10 +46,14 @@ def main():
     layout = simple.CreateLayout("strain bands")
     view = runout_pv.render_view()
     simple.AssignViewToLayout(view=view, layout=layout, hint=0)
-    figures.build_strain_bands(reader, view)
+    lut = figures.build_strain_bands(reader, view)[3]
+    # The colours span the strain of the frame shown, whatever run the
+    # state is opened on (the range saved is that of the run made from).
+    lut.AutomaticRescaleRangeMode = "Clamp and update every timestep"
     layout.SetSize(1200, 600)
     simple.Render(view)
     runout_pv.fit_camera(view, reader.GetDataInformation().GetBounds())
+    runout_pv.follow_slide(view, reader)
     simple.Render(view)
 
     path = os.path.join(options.out, "strain_bands.pvsm")

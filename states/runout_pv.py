@@ -2,15 +2,15 @@
 figures.py, make_states.py, load_state.py): finding a run's files, showing
 the particles and the filters' lines in a render view with the heights
 exaggerated, colour maps with a scale bar, the base drawn from the frames'
-field data, and fitting the camera to the slide.
+field data, and fitting the camera to the slide or having it follow the
+slide.
 
 Import it from a script in this folder (the scripts put their own folder
 first on sys.path, pvbatch does not always).
 """
-import glob
-import os
+from paraview import servermanager, simple
 
-from paraview import simple
+from state_on_run import find_pvd  # noqa: F401 (the scripts take it from here)
 
 EXAGGERATION = [1.0, 3.0, 1.0]
 WHITE = [1.0, 1.0, 1.0]
@@ -19,14 +19,6 @@ INK = [0.1, 0.1, 0.1]
 # The Runout filters' Python names (the XML labels without spaces).
 RUNOUT_FILTERS = ("RunoutPlasticStrain", "RunoutShearBands", "RunoutHorstsAndGrabens",
                   "RunoutMorphology", "RunoutMorphologyHistory")
-
-
-def find_pvd(run_dir):
-    """The frame series <name>.pvd of a run's output folder."""
-    found = sorted(glob.glob(os.path.join(run_dir, "*.pvd")))
-    if not found:
-        raise SystemExit(f"no .pvd in {run_dir}: not a run's output folder")
-    return found[0]
 
 
 def load_plugin(plugin):
@@ -145,6 +137,26 @@ def fit_camera(view, bounds, exaggeration=EXAGGERATION, fill=0.55, margin=1.0, s
     width, height = size or view.ViewSize
     view.CameraParallelScale = max(fill * (xmax - xmin) * height / width,
                                    margin * exaggeration[1] * (ymax - ymin) * 0.5 + 1.0)
+
+
+def follow_slide(view, reader, exaggeration=EXAGGERATION):
+    """A camera that follows the slide as the time moves (ParaView's
+    Follow Data camera track): its focal point on the centre of the
+    particles' bounds, as the displays draw them (heights exaggerated, so
+    it follows a hidden scaled copy, "camera target"). Without it a state
+    keeps the framing it was saved with while the slide runs out of view."""
+    target = simple.Transform(registrationName="camera target", Input=reader)
+    target.Transform.Scale = exaggeration
+    track = simple.GetCameraTrack(view=view)
+    track.Mode = "Follow-data"
+    track.DataSource = target
+    # The track reports "too few keyframes" on every frame without two,
+    # which Follow Data does not read; registered, or a state leaves them out.
+    frames = [simple.CameraKeyFrame(KeyTime=t) for t in (0.0, 1.0)]
+    for k, frame in enumerate(frames):
+        servermanager.ProxyManager().RegisterProxy("animation", f"camera key frame {k}", frame)
+    track.KeyFrames = frames
+    return track
 
 
 def set_time(time):

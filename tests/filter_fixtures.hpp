@@ -5,6 +5,9 @@
 
 #include <vtkAbstractArray.h>
 #include <vtkCommand.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkTable.h>
 #include <vtkVariant.h>
 
@@ -32,5 +35,23 @@ inline double value(vtkTable* table, const char* name, vtkIdType row = 0) {
   EXPECT_NE(a, nullptr) << name;
   return a && row < a->GetNumberOfTuples() ? a->GetVariantValue(row).ToDouble() : NAN;
 }
+
+// The point arrays Runout Morphology reads, named as the engine names them
+// (docs/output.md), to fill a tuple a particle and add to a frame.
+struct MorphologyArrays {
+  vtkNew<vtkDoubleArray> velocity, mass, initial;
+  MorphologyArrays() {
+    velocity->SetName("velocity");
+    velocity->SetNumberOfComponents(3);
+    mass->SetName("mass");
+    initial->SetName("initial_position");
+    initial->SetNumberOfComponents(3);
+  }
+  void add_to(vtkPointData* data) {
+    data->AddArray(velocity);
+    data->AddArray(mass);
+    data->AddArray(initial);
+  }
+};
 
 }  // namespace runout::filter_fixtures

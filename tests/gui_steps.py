@@ -14,7 +14,11 @@ shows one output of a Runout filter in a spreadsheet, as a user opens one,
 and records what the spreadsheet shows; "sheet-close" removes it. "frame"
 fits the camera to the render view, "style" does what docs/paraview.md has
 the user do after Apply (colours, exaggeration), "picture" saves the whole
-screen (docs/paraview.md's pictures). "finish" writes the record
+screen (docs/paraview.md's pictures). "new-reader" records what
+Sources > Runout Series Reader made and removes it. "state", run by
+--script in a GUI that scripts/paraview-state opened, records the state at
+the run's last frame into CONFIG's result file and ends ParaView. "finish"
+writes the record
 to CONFIG's result file and ends ParaView (its --exit does not end it after
 a test script with events in Debian's 5.11).
 """
@@ -29,7 +33,7 @@ if "RUNOUT_GUI_RECORD" not in globals():
     RUNOUT_GUI_RECORD = {"steps": []}
 
 # The overlays the test looks for: (filter's XML name, port, part).
-OVERLAYS = (("RunoutShearBands", 0, "bands"), ("RunoutHorstGraben", 0, "blocks"),
+OVERLAYS = (("RunoutShearBands", 0, "bands"), ("RunoutHorstsAndGrabens", 0, "blocks"),
             ("RunoutMorphology", 0, "profile"))
 # The Strain Grid's outline: drawn where the slide is highest at t = 0,
 # along the profile's top, so the test leaves those pixels out.
@@ -208,9 +212,9 @@ def _close_sheet(view):
 
 
 # The colours docs/paraview.md has the user give the overlays (its step 4):
-# (filter's XML name, port): RGB.
 # (filter's XML name, port): RGB, apart from the particles' blue to red.
-LINE_COLOURS = {("RunoutShearBands", 0): [1.0, 1.0, 0.0], ("RunoutHorstGraben", 0): [0.0, 0.0, 0.0],
+LINE_COLOURS = {("RunoutShearBands", 0): [1.0, 1.0, 0.0],
+                ("RunoutHorstsAndGrabens", 0): [0.0, 0.0, 0.0],
                 ("RunoutMorphology", 0): [0.0, 0.8, 0.0]}
 
 
@@ -276,6 +280,59 @@ def _fit_camera(view, reader, config, size):
                          exaggeration=EXAGGERATION, margin=1.2, size=size)
 
 
+def _grabens():
+    """The blocks Runout Horsts And Grabens types graben (type_code 2) in
+    the frame shown, and the columns of Runout Morphology's table named
+    after grabens: {"typed": n, "morphology": {column: value}}."""
+    from paraview import servermanager
+    blocks, morphology = _source("RunoutHorstsAndGrabens"), _source("RunoutMorphology")
+    if blocks is None or morphology is None:
+        return {}
+    table = servermanager.Fetch(blocks, idx=1)
+    codes = table.GetColumnByName("type_code")
+    typed = sum(1 for r in range(table.GetNumberOfRows())
+                if codes is not None and codes.GetValue(r) == 2)
+    row = servermanager.Fetch(morphology, idx=1)
+    named = {row.GetColumnName(c): row.GetValue(0, c).ToDouble()
+             for c in range(row.GetNumberOfColumns())
+             if "graben" in row.GetColumnName(c) and not row.GetColumnName(c).startswith("initial")}
+    return {"typed": typed, "morphology": named}
+
+
+def _new_reader():
+    """What Sources > Runout Series Reader made (before any Apply): its
+    file name and time steps; then removed, leaving the walk-through's
+    pipeline as it was."""
+    reader = _source("RunoutSeriesReader")
+    if reader is None:
+        return {"made": False}
+    made = {"made": True, "file": reader.FileName, "steps": len(reader.TimestepValues)}
+    simple.Delete(reader)
+    return made
+
+
+def _state_on_run(view):
+    """A state as scripts/paraview-state opened it, at the run's last frame
+    (the VCR's Last Frame): the sources, the file its reader reads, the
+    particles' bounds, the camera, and the strain's colour map against the
+    frame's strain."""
+    reader = simple.FindSource("run")
+    scene = simple.GetAnimationScene()
+    scene.AnimationTime = reader.TimestepValues[-1]
+    # Not simple.Render: its first call in a session resets the camera.
+    view.StillRender()
+    info = reader.GetDataInformation()
+    points = simple.GetColorTransferFunction("plastic_shear_strain").RGBPoints
+    return {"sources": sorted(s.GetXMLName() for s in simple.GetSources().values()),
+            "file": reader.FileName, "time": float(scene.AnimationTime),
+            "last": reader.TimestepValues[-1], "bounds": list(info.GetBounds()),
+            "focal": list(view.CameraFocalPoint), "scale": view.CameraParallelScale,
+            "size": list(view.ViewSize), "exaggeration": list(EXAGGERATION),
+            "map": [points[0], points[-4]],
+            "strain": list(info.GetPointDataInformation().GetArrayInformation(
+                "plastic_shear_strain").GetComponentRange(0))}
+
+
 def runout_gui_step(what, tag, config_path):
     with open(config_path) as f:
         config = json.load(f)
@@ -288,6 +345,15 @@ def runout_gui_step(what, tag, config_path):
             os._exit(0)  # the test reads the record, or its absence
     view = _render_view()
     scene = simple.GetAnimationScene()
+    if what == "state":
+        try:
+            with open(config["result"], "w") as f:
+                json.dump(_state_on_run(view), f, indent=1, default=str)
+        finally:
+            os._exit(0)
+    if what == "new-reader":
+        record["new_reader"] = _new_reader()
+        return
     if what == "sheet":
         name, port = tag.split(":")
         shown = _sheet(name, int(port))
@@ -327,4 +393,5 @@ def runout_gui_step(what, tag, config_path):
             if source is not None:
                 info = source.GetDataInformation(port)
                 step["counts"][part] = [info.GetNumberOfPoints(), info.GetNumberOfCells()]
+        step["grabens"] = _grabens()
     record["steps"].append(step)

@@ -23,7 +23,17 @@ It fails on any error or warning ParaView prints, and unless
   pixels, those pixels lie within the particles' picture, and in the
   picture as the GUI shows it most of them still have the overlay's colour
   (it is drawn, not covered), while most of the particles' pixels still
-  differ from the background (not covered by the outlines' polygons).
+  differ from the background (not covered by the outlines' polygons);
+- Sources > Runout Series Reader, made after the walk-through, waits for
+  its file (no time steps, no message);
+- Runout Morphology reports no count named after grabens that differs from
+  the blocks Runout Horsts And Grabens types graben.
+Then it opens states/strain_bands.pvsm on the run with
+scripts/paraview-state (--test-script: paraview refuses --script beside
+--state), and fails on any error or warning, and unless at the run's last
+frame the Runout filters are there, the reader reads the run, the camera
+looks at the centre of the slide as drawn and the strain's colour map spans
+the frame's strain.
 
 Run by pvpython (for VTK's PNG reader and numpy):
   pvpython tests/gui_walkthrough.py SOURCE_DIR RUNOUT_CLI PLUGIN_DIR PARAVIEW [KEEP_DIR]
@@ -48,7 +58,7 @@ XVFB = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24 -noreset -fbdir {fbdir}"
 # The overlays first: Runout Plastic Strain's particles take the run's place
 # (ParaView's default), the overlays must leave it shown. The history last:
 # its chart becomes the active view, where the others would not be shown.
-OVERLAY_FILTERS = ("RunoutShearBands", "RunoutHorstGraben", "RunoutMorphology")
+OVERLAY_FILTERS = ("RunoutShearBands", "RunoutHorstsAndGrabens", "RunoutMorphology")
 FILTERS = OVERLAY_FILTERS + ("RunoutPlasticStrain", "RunoutMorphologyHistory")
 # Every Runout filter has two outputs (ports 0 and 1).
 PORTS = 2
@@ -59,6 +69,7 @@ AXIS_TITLES = ["distance (m)", "time (s)"]
 SHELL = "pqClientMainWindow/pythonShellDock/pythonShell/consoleWidget"
 APPLY = "pqClientMainWindow/propertiesDock/propertiesPanel/Accept"
 MENU = "pqClientMainWindow/menubar/menuFilters/Alphabetical"
+SOURCES = "pqClientMainWindow/menubar/menuSources/Alphabetical"
 BROWSER = "pqClientMainWindow/pipelineBrowserDock/pipelineBrowser"
 VCR = "pqClientMainWindow/VCRToolbar/"
 # What ParaView prints for an error or a warning (the terminal copy of its
@@ -78,13 +89,22 @@ def event(obj, command, arguments=""):
     return f'  <pqevent object="{obj}" command="{command}" arguments="{quote}" />'
 
 
+def shell_step(steps, config, what, tag=""):
+    """The event that runs gui_steps.py's step in the GUI's Python shell."""
+    return event(SHELL, "executeCommand",
+                 f"exec(open({steps!r}).read()); runout_gui_step({what!r}, {tag!r}, {config!r})")
+
+
+def events_of(lines):
+    """A test script of ParaView's event player."""
+    return "<?xml version=\"1.0\" ?>\n<pqevents>\n" + "\n".join(lines) + "\n</pqevents>\n"
+
+
 def events(steps, config):
     """The test script: Apply on the opened run, every filter on the run,
     then the first frame, the last, and back one."""
     def step(what, tag):
-        return event(SHELL, "executeCommand",
-                     f"exec(open({steps!r}).read()); runout_gui_step({what!r}, {tag!r}, "
-                     f"{config!r})")
+        return shell_step(steps, config, what, tag)
     lines = [event(APPLY, "activate"), step("record", "opened")]
     for name in FILTERS:
         # The run selected in the Pipeline Browser (its first source).
@@ -105,8 +125,12 @@ def events(steps, config):
     # the colours its step 4 has the user give (each a step of its own, so
     # that the screen is painted before it is saved).
     lines += [step("frame", ""), step("picture", "gui_layout"), step("style", ""),
-              step("picture", "gui_walkthrough"), step("finish", "")]
-    return "<?xml version=\"1.0\" ?>\n<pqevents>\n" + "\n".join(lines) + "\n</pqevents>\n"
+              step("picture", "gui_walkthrough")]
+    # The plugin's reader from the Sources menu, as a user starts with it:
+    # made before a file is picked, it must wait for one without an error.
+    lines += [event(SOURCES, "activate", "RunoutSeriesReader"), step("new-reader", ""),
+              step("finish", "")]
+    return events_of(lines)
 
 
 def pixels(path):
@@ -245,6 +269,44 @@ def check_pictures(paths, failures):
                         "not recoloured")
 
 
+def check_new_reader(made, failures):
+    """Sources > Runout Series Reader made the reader, with no file and no
+    time steps yet (and, the log checks, without an error)."""
+    if not made.get("made"):
+        failures.append("Sources > Runout > Runout Series Reader made no reader")
+    elif made["file"] or made["steps"]:
+        failures.append(f"the new Runout Series Reader reads {made['file']!r} "
+                        f"({made['steps']} steps) before a file is picked")
+
+
+def check_state(state, run_pvd, failures):
+    """states/strain_bands.pvsm as scripts/paraview-state opened it on the
+    run, at its last frame: the Runout filters there, the reader on the
+    run, the camera on the slide as drawn (heights exaggerated), and the
+    strain's colours spanning the frame's strain."""
+    for name in ("RunoutShearBands", "RunoutHorstsAndGrabens"):
+        if name not in state["sources"]:
+            failures.append(f"state: {name} not loaded ({state['sources']})")
+    if os.path.realpath(state["file"]) != os.path.realpath(run_pvd):
+        failures.append(f"state: its reader reads {state['file']}, not the run's {run_pvd}")
+    if state["time"] != state["last"]:
+        failures.append(f"state: at t = {state['time']} after Last Frame, not {state['last']}")
+    b, scale = state["bounds"], state["exaggeration"]
+    centre = [(b[0] + b[1]) / 2 * scale[0], (b[2] + b[3]) / 2 * scale[1]]
+    off = [abs(f - c) for f, c in zip(state["focal"], centre)]
+    if max(off) > 1e-6 * (b[1] - b[0]):
+        failures.append(f"state: the camera looks at {state['focal'][:2]}, the slide's centre "
+                        f"is {centre} at the last frame: it does not follow the slide")
+    low, high = state["strain"]
+    if not (abs(state["map"][0] - low) <= 1e-6 * max(1.0, high)
+            and abs(state["map"][1] - high) <= 1e-6 * max(1.0, high)):
+        failures.append(f"state: the strain's colours span {state['map']}, the frame's strain "
+                        f"{state['strain']}")
+    print(f"state at t = {state['time']:g}: camera on x = {state['focal'][0]:.2f} "
+          f"(slide {b[0]:.2f} to {b[1]:.2f}), colours {state['map']} for strain "
+          f"{state['strain']}")
+
+
 def check_record(record, failures):
     steps = {step["tag"]: step for step in record["steps"]}
     if sorted(steps) != ["applied", "last", "opened", "overlays", "previous"]:
@@ -271,11 +333,11 @@ def check_record(record, failures):
         failures.append("the run's particles are hidden once the overlay filters are applied")
     if not rep("RunoutPlasticStrain", 0).get("visible"):
         failures.append("Runout Plastic Strain's particles are not shown after its Apply")
-    for source, port, kind in (("RunoutHorstGraben", 0, "Wireframe"),
+    for source, port, kind in (("RunoutHorstsAndGrabens", 0, "Wireframe"),
                                ("RunoutPlasticStrain", 1, "Outline")):
         if rep(source, port).get("representation") != kind:
             failures.append(f"{source} port {port} shown as {rep(source, port)}, not {kind}")
-    for source in ("RunoutShearBands", "RunoutHorstGraben", "RunoutMorphology"):
+    for source in ("RunoutShearBands", "RunoutHorstsAndGrabens", "RunoutMorphology"):
         if not rep(source, 0).get("visible"):
             failures.append(f"{source} is not shown in the render view")
     chart = rep("RunoutMorphologyHistory", 1, CHART)
@@ -286,14 +348,67 @@ def check_record(record, failures):
     check_opening(applied, failures)
     check_sheets(record.get("sheets", []), failures)
     check_pictures(record.get("pictures", []), failures)
+    check_new_reader(record.get("new_reader", {}), failures)
     times = [steps[t]["time"] for t in ("opened", "last", "previous")]
     if not times[0] < times[2] < times[1]:
         failures.append(f"times at open, last, previous frame: {times}")
     for tag in ("last", "previous"):
         check_step(steps[tag], failures)
+    for tag in ("applied", "last", "previous"):
+        grabens = steps[tag].get("grabens", {})
+        for column, value in grabens.get("morphology", {}).items():
+            if value != grabens["typed"]:
+                failures.append(f"{tag}: Runout Morphology's {column} is {value:g} where Runout "
+                                f"Horsts And Grabens types {grabens['typed']} blocks graben")
     for part in ("bands", "blocks"):
         if not steps["last"]["counts"].get(part, [0, 0])[1]:
             failures.append(f"no {part} at the last frame: the run shows nothing to check")
+
+
+def run_gui(command, env, what, result, failures):
+    """Runs ParaView's GUI; its record (the JSON file `result` that its
+    Python steps write), or None. Each error or warning line it prints, and
+    a missing record, is a failure of `what`."""
+    start = time.time()
+    proc = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                          env=env)
+    print(f"{what} ran {time.time() - start:.0f} s, exit {proc.returncode}")
+    problems = [line for line in proc.stdout.splitlines() if PROBLEM.search(line)]
+    for line in problems:
+        print("paraview:", line)
+    if problems:
+        failures.append(f"{len(problems)} error or warning lines from {what}")
+    if not os.path.isfile(result):
+        print(proc.stdout)
+        failures.append(f"{what}: its Python steps did not finish (no record)")
+        return None
+    with open(result) as f:
+        return json.load(f)
+
+
+def open_state(source, run_dir, plugin_dir, paraview, work, env, failures):
+    """scripts/paraview-state on the run in the real GUI, with a --script
+    that records the state at the last frame (gui_steps.py's "state")."""
+    config = os.path.join(work, "state_config.json")
+    result = os.path.join(work, "state.json")
+    with open(config, "w") as f:
+        json.dump({"result": result, "states": os.path.join(source, "states")}, f)
+    # A test script of one event, the step in the Python shell (paraview
+    # refuses --script beside --state).
+    script = os.path.join(work, "state_events.xml")
+    with open(script, "w") as f:
+        f.write(events_of([shell_step(os.path.join(source, "tests", "gui_steps.py"), config,
+                                      "state")]))
+    # The wrapper puts the plugin in PV_PLUGIN_PATH itself.
+    env = {k: v for k, v in env.items() if k != "PV_PLUGIN_PATH"}
+    env.update(RUNOUT_PARAVIEW=paraview, RUNOUT_PLUGIN_DIR=plugin_dir)
+    state = run_gui(XVFB[:-1] + ["-screen 0 1600x1000x24 -noreset", "timeout", "-k", "5", "120",
+                                 os.path.join(source, "scripts", "paraview-state"), run_dir,
+                                 os.path.join(source, "states", "strain_bands.pvsm"),
+                                 "--test-script=" + script, "--dr"],
+                    env, "scripts/paraview-state", result, failures)
+    if state is not None:
+        check_state(state, os.path.join(run_dir, "default.pvd"), failures)
 
 
 def main():
@@ -328,34 +443,23 @@ def main():
         # A HOME of its own: no settings or recent files of the user's.
         env = dict(os.environ, HOME=os.path.join(work, "home"), PV_PLUGIN_PATH=plugin_dir)
         os.makedirs(env["HOME"])
-        start = time.time()
         # timeout inside xvfb-run: a hung GUI is killed, not left running.
         xvfb = XVFB[:-1] + [XVFB[-1].format(fbdir=fbdir)]
-        proc = subprocess.run(xvfb + ["timeout", "-k", "5", "200", paraview,
-                                      "--data=" + os.path.join(run_dir, "default.pvd"),
-                                      "--test-script=" + script, "--exit",
-                                      # No settings: no Welcome dialog, which
-                                      # would stop the event player.
-                                      "--dr",
-                                      # The screen's size (no window manager
-                                      # to maximise it), for the pictures.
-                                      "-geometry", "1600x1000+0+0"],
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                              env=env)
-        print(f"paraview ran {time.time() - start:.0f} s, exit {proc.returncode}")
         failures = []
-        problems = [line for line in proc.stdout.splitlines() if PROBLEM.search(line)]
-        for line in problems:
-            print("paraview:", line)
-        if problems:
-            failures.append(f"{len(problems)} error or warning lines from paraview")
-        if not os.path.isfile(result):
-            print(proc.stdout)
-            failures.append("the GUI steps did not finish (no record)")
+        record = run_gui(xvfb + ["timeout", "-k", "5", "200", paraview,
+                                 "--data=" + os.path.join(run_dir, "default.pvd"),
+                                 "--test-script=" + script, "--exit",
+                                 # No settings: no Welcome dialog, which
+                                 # would stop the event player.
+                                 "--dr",
+                                 # The screen's size (no window manager
+                                 # to maximise it), for the pictures.
+                                 "-geometry", "1600x1000+0+0"],
+                         env, "paraview", result, failures)
+        if record is None:
             fail(failures)
-        with open(result) as f:
-            record = json.load(f)
         check_record(record, failures)
+        open_state(source, run_dir, plugin_dir, paraview, work, env, failures)
         fail(failures)
     finally:
         shutil.rmtree(work, ignore_errors=True)

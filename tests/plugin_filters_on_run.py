@@ -4,7 +4,11 @@ runtime. Loads the plugin, opens the run's .pvd, applies each filter that
 the plugin's XML files define with its default settings, updates every
 output port on the last frame, and checks the morphology filters' values;
 then opens the run again with the Runout Series Reader (frames checked
-against the manifest) and checks that it gives the same history.
+against the manifest) and checks that it gives the same history, that a
+time asked is the frame shown even where the index stores it with a
+rounding error, and that made without a file it waits for one quietly.
+On every frame, a Runout Morphology column named after grabens must count
+what Runout Horsts And Grabens calls grabens.
 ctest fails the test on any "ERROR:" a filter prints.
 
 Usage: pvpython plugin_filters_on_run.py <RunoutPlugin.so> <folder of its XML files>
@@ -13,6 +17,8 @@ paraview.simple is unavailable.
 """
 import math
 import os
+import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -152,6 +158,66 @@ def check_morphology(servermanager, morphology, time, runout):
           f"{profile.GetNumberOfPoints()} profile bins")
 
 
+def check_grabens(servermanager, morphology, blocks, times):
+    """One meaning of "graben": a column of Runout Morphology's table
+    named after grabens counts the blocks Runout Horsts And Grabens types
+    graben (type_code 2) in the same frame."""
+    named = 0
+    for time in times:
+        morphology.UpdatePipeline(time)
+        blocks.UpdatePipeline(time)
+        table = columns(servermanager.Fetch(morphology, idx=1))
+        codes = columns(servermanager.Fetch(blocks, idx=1)).get("type_code", [])
+        grabens = sum(1 for code in codes if code.ToInt() == 2)
+        for name, values in table.items():
+            if "graben" in name and not name.startswith("initial"):
+                named += 1
+                if values[0].ToInt() != grabens:
+                    fail(f"at t={time:g} Runout Morphology's {name} is {values[0]}, Runout "
+                         f"Horsts And Grabens types {grabens} blocks graben")
+    print(f"grabens: {named} Morphology counts named so, each equal to the typed blocks")
+
+
+def check_reader_waits(simple):
+    """The reader as Sources > Runout Series Reader makes it, before a file
+    is picked: no time steps, and no error (ctest fails on one)."""
+    reader = simple.RunoutSeriesReader()
+    reader.UpdatePipelineInformation()
+    if len(reader.TimestepValues):
+        fail(f"a Runout Series Reader without a file offers times {reader.TimestepValues}")
+    simple.Delete(reader)
+    print("Runout Series Reader without a file: no times, no error")
+
+
+def check_times_asked(simple, pvd, times):
+    """The time asked is the frame shown: an index whose times carry the
+    rounding error of a sum of steps (27.700000000000003 for 27.7), written
+    beside the run's with its manifest, gives frame k at the time printed
+    with 12 digits."""
+    folder = os.path.dirname(pvd)
+    nudged = os.path.join(folder, "nudged.pvd")
+    with open(pvd) as f:
+        text = f.read()
+    text = re.sub(r'timestep="([^"]+)"',
+                  lambda m: f'timestep="{float(m.group(1)) * (1 + 4e-16)!r}"', text)
+    with open(nudged, "w") as f:
+        f.write(text)
+    shutil.copy(pvd + ".manifest", nudged + ".manifest")
+    reader = simple.RunoutSeriesReader(FileName=nudged)
+    reader.UpdatePipelineInformation()
+    stored = list(reader.TimestepValues)
+    if stored[1:] == list(times[1:]):
+        fail(f"the nudged index {nudged} lists the run's times exactly: nothing to check")
+    for k, time in enumerate(stored):
+        asked = float(f"{time:.12g}")
+        reader.UpdatePipeline(asked)
+        shown = reader.GetDataInformation().DataInformation.GetTime()
+        if shown != time:
+            fail(f"asked t={asked!r}, the reader shows the frame at {shown!r}, not {time!r}")
+    simple.Delete(reader)
+    print(f"times asked: each of {len(stored)} frames shown at its rounded time")
+
+
 def main():
     servermanager, simple, plugin, xml_folder = paraview_and_arguments()
     with tempfile.TemporaryDirectory() as folder:
@@ -193,6 +259,10 @@ def main():
         if check_history(servermanager, history, times) != runout:
             fail("the history through the Runout Series Reader differs from the PVD reader's")
         print("Runout Series Reader: the same", len(times), "frames and history")
+        check_times_asked(simple, pvd, times)
+        check_reader_waits(simple)
+        check_grabens(servermanager, filters["RunoutMorphology"],
+                      filters["RunoutHorstsAndGrabens"], times)
     print("all Runout filters ran on", len(times), "frames")
 
 

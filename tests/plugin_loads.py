@@ -1,7 +1,9 @@
 """RunoutPlugin in headless ParaView (pvpython or pvbatch): it loads, and
 every filter and reader that its server-manager XML files define is in the
 "Runout" category of the Filters or Sources menu, under the Python name
-ParaView gives it, with a menu icon that is a 32 x 32 PNG of RunoutIcons.qrc. With
+ParaView gives it, which is its XML name (the name state files and
+ParaView's messages use) and the one docs/filters.md shows, with a menu
+icon that is a 32 x 32 PNG of RunoutIcons.qrc. With
 RUNOUT_PLUGIN_ICONS=ON (the build found Qt's rcc) the plugin must hold
 each icon (its bytes and its name, which rcc stores as UTF-16): the GUI
 looks the icon up there, and one missing shows as no icon, silently.
@@ -59,6 +61,23 @@ def icon_problems(icons, plugin, xml_folder):
     return problems
 
 
+def name_problems(expected, xml_folder):
+    """One name per filter: a state file and ParaView's messages name a
+    proxy by its XML name, Python by its label, so the two must be the
+    same, and docs/filters.md must show it ({XML name: Python name})."""
+    docs = os.path.join(xml_folder, os.pardir, os.pardir, "docs", "filters.md")
+    with open(docs) as f:
+        text = f.read()
+    problems = []
+    for proxy, python in sorted(expected.items()):
+        if proxy != python:
+            problems.append(f"{proxy}: its Python name is {python}; state files and "
+                            f"ParaView's messages say {proxy}")
+        if f"`{python}`" not in text:
+            problems.append(f"{python}: docs/filters.md does not show this Python name")
+    return problems
+
+
 def main():
     servermanager, simple, plugin, xml_folder = paraview_and_arguments()
     expected = {group: runout_filters(xml_folder, group) for group in ("filters", "sources")}
@@ -78,6 +97,9 @@ def main():
     missing = [name for name in expected.values() if not hasattr(simple, name)]
     if missing:
         sys.exit(f"{plugin} loaded, but without the Python functions {missing}")
+    problems = name_problems(expected, xml_folder)
+    if problems:
+        sys.exit("\n".join(problems))
     print("RunoutPlugin OK:", ", ".join(sorted(expected.values())))
 
 

@@ -590,8 +590,9 @@ TEST(ResultColumns, NamesInTheDocumentedOrder) {
             (std::vector<std::string>{"toe", "rear", "length", "max_thickness", "runout",
                                       "toe_velocity", "centroid_x", "centroid_y", "centroid_s",
                                       "centroid_velocity", "outside_mass", "initial_toe",
-                                      "length_ratio", "thickness_ratio", "particles", "grabens",
-                                      "initial_grabens", "mechanism_id", "mechanism"}));
+                                      "length_ratio", "thickness_ratio", "late_stretch",
+                                      "particles", "troughs", "initial_troughs",
+                                      "mechanism_id", "mechanism"}));
 }
 
 TEST(ResultColumns, ValuesOfABandABlockAndAFrame) {

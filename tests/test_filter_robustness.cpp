@@ -19,6 +19,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkTable.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
@@ -399,4 +400,47 @@ TEST(FilterRobustness, SeriesReaderWithoutAnIndexIsAnError) {
   reader->Update();
   EXPECT_EQ(errors->errors, 1);
   EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+// As ParaView makes it from the Sources menu, before a file is picked: the
+// information pass (which ParaView runs at once) offers no time steps and
+// reports nothing; run without a file, it is one error and an empty output.
+TEST(FilterRobustness, SeriesReaderWithoutAFileWaitsForOne) {
+  vtkNew<vtkRunoutSeriesReader> reader;
+  vtkNew<ErrorCounter> errors, warnings;
+  reader->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->AddObserver(vtkCommand::WarningEvent, warnings);
+  reader->UpdateInformation();
+  EXPECT_EQ(errors->errors + warnings->errors, 0) << errors->last << warnings->last;
+  EXPECT_FALSE(
+      reader->GetOutputInformation(0)->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+  reader->Update();
+  EXPECT_EQ(errors->errors, 1);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+// The engine's index stores each time as the sum of its steps (0.1 + 0.1 +
+// 0.1 = 0.30000000000000004): the time asked, 0.3, is that frame, not the
+// one before it.
+TEST(FilterRobustness, SeriesReaderShowsTheFrameOfTheTimeAsked) {
+  const fs::path dir = series_folder("times");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  runout::PvdIndex index((dir / "series.pvd").string());
+  double time = 0;
+  for (int k = 0; k < 4; ++k, time += 0.1) {
+    const std::string name = "frame_0000" + std::to_string(k) + ".vtu";
+    write_slab(dir / name, k);
+    index.add(time, name);
+  }
+  ASSERT_NE(0.1 + 0.1 + 0.1, 0.3);
+  vtkNew<vtkRunoutSeriesReader> reader;
+  reader->SetFileName(index.path().c_str());
+  auto shown = [&](double asked) {
+    reader->UpdateTimeStep(asked);
+    return reader->GetOutput()->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP());
+  };
+  for (const double asked : {0.0, 0.1, 0.2, 0.3}) EXPECT_NEAR(shown(asked), asked, 1e-12) << asked;
+  EXPECT_NEAR(shown(0.25), 0.2, 1e-12);  // between frames: the one before
+  fs::remove_all(dir);
 }

@@ -100,22 +100,15 @@ vtkSmartPointer<vtkUnstructuredGrid> frame(const Particles& p, double time,
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> velocity, mass, initial;
-  velocity->SetName("velocity");
-  velocity->SetNumberOfComponents(3);
-  mass->SetName("mass");
-  initial->SetName("initial_position");
-  initial->SetNumberOfComponents(3);
+  runout::filter_fixtures::MorphologyArrays arrays;
   for (int i = 0; i < p.size(); ++i) {
     points->InsertNextPoint(p.x[i], p.y[i], 0.0);
-    velocity->InsertNextTuple3(p.vx[i], p.vy[i], 0.0);
-    mass->InsertNextValue(p.mass[i]);
-    initial->InsertNextTuple3(p.x0[i], p.y0[i], 0.0);
+    arrays.velocity->InsertNextTuple3(p.vx[i], p.vy[i], 0.0);
+    arrays.mass->InsertNextValue(p.mass[i]);
+    arrays.initial->InsertNextTuple3(p.x0[i], p.y0[i], 0.0);
   }
   grid->SetPoints(points);
-  grid->GetPointData()->AddArray(velocity);
-  grid->GetPointData()->AddArray(mass);
-  grid->GetPointData()->AddArray(initial);
+  arrays.add_to(grid->GetPointData());
   add_field(grid, "TimeValue", 1, {time});
   add_field(grid, "particle_spacing", 1, {kSpacing});
   std::vector<double> base;
@@ -171,7 +164,7 @@ TEST(RunoutMorphology, TranslatedBlockHasItsRunoutAndSlidesAsABlock) {
   EXPECT_EQ(value(table, "outside_mass"), 0.0);
   EXPECT_DOUBLE_EQ(value(table, "length_ratio"), 1.0);
   EXPECT_DOUBLE_EQ(value(table, "thickness_ratio"), 1.0);
-  EXPECT_EQ(value(table, "grabens"), 0);
+  EXPECT_EQ(value(table, "troughs"), 0);
   EXPECT_EQ(mechanism(table), "block sliding");
   EXPECT_EQ(value(table, "mechanism_id"), static_cast<int>(Mechanism::BlockSliding));
 
@@ -242,7 +235,7 @@ TEST(RunoutMorphology, ThinningLengtheningSlabIsElongationNotBlockSliding) {
   EXPECT_DOUBLE_EQ(value(table, "length_ratio"), 59.875 / 40.0);
   EXPECT_DOUBLE_EQ(value(table, "thickness_ratio"), (3.875 / 1.5 + 0.125) / 4.0);
   EXPECT_DOUBLE_EQ(value(table, "runout"), 5.0 + 1.5 * 39.875 + 0.125 - 40.0);
-  EXPECT_EQ(value(table, "grabens"), 0);
+  EXPECT_EQ(value(table, "troughs"), 0);
   EXPECT_EQ(mechanism(table), "elongation");
 
   // The same slab only translated slides as a block.
@@ -257,7 +250,7 @@ TEST(RunoutMorphology, NarrowDipsOfAThinningSlabAreNotGrabens) {
     if (static_cast<int>(p.x0[i] / kSpacing) % 8 == 0) p.y[i] *= 0.7;
   Morphology m;
   vtkTable* table = m.run(frame(p, 8.0));
-  EXPECT_EQ(value(table, "grabens"), 0);
+  EXPECT_EQ(value(table, "troughs"), 0);
   EXPECT_EQ(mechanism(table), "elongation");
 }
 
@@ -272,8 +265,8 @@ TEST(RunoutMorphology, DroppedBlocksBetweenHorstsAreSpreading) {
   Morphology m;
   vtkTable* table = m.run(frame(p, 20.0));
   EXPECT_EQ(m.counter->errors, 0) << m.counter->last;
-  EXPECT_EQ(value(table, "grabens"), 2);
-  EXPECT_EQ(value(table, "initial_grabens"), 0);
+  EXPECT_EQ(value(table, "troughs"), 2);
+  EXPECT_EQ(value(table, "initial_troughs"), 0);
   EXPECT_EQ(mechanism(table), "spreading");
 }
 

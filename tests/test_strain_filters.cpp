@@ -1,5 +1,6 @@
 // The plastic strain, shear band and horst/graben filters as VTK classes
-// (pipeline time, arrays, robustness) on synthetic particle lattices; their
+// (pipeline time, arrays, robustness) on synthetic particle lattices, and
+// what Runout Morphology calls the horst/graben filter's grabens; their
 // algorithms are tested without VTK in test_analysis_algorithms.cpp.
 #include <gtest/gtest.h>
 
@@ -32,6 +33,7 @@
 #include "filter_fixtures.hpp"
 #include "lattice_fixtures.hpp"
 #include "vtkRunoutHorstGraben.h"
+#include "vtkRunoutMorphology.h"
 #include "vtkRunoutPlasticStrain.h"
 #include "vtkRunoutShearBands.h"
 
@@ -521,4 +523,46 @@ TEST(HorstGrabenFilter, RobustInputs) {
     EXPECT_EQ(table()->GetNumberOfRows(), 0);
   }
   EXPECT_EQ(counter->errors, 2);
+}
+
+// One word, one meaning: in a frame where Runout Horsts And Grabens types a
+// block graben (two bands converging downwards under a flat surface),
+// Runout Morphology, which reads only the surface and sees no trough there,
+// must not report a count under the name "graben" that says otherwise.
+TEST(HorstGrabenFilter, MorphologyNamesNoOtherGrabenCount) {
+  Slab slab;
+  slab.length = 40;
+  slab.bands = {{18.0, 45.0, 0.4}, {22.0, -45.0, 0.4}};
+  auto frame = to_frame(make_lattice(slab), slab.h);
+  // What Runout Morphology reads besides the positions: the particles at
+  // rest, of unit mass, where they started.
+  runout::filter_fixtures::MorphologyArrays arrays;
+  for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i) {
+    arrays.velocity->InsertNextTuple3(0.0, 0.0, 0.0);
+    arrays.mass->InsertNextValue(1.0);
+    arrays.initial->InsertNextTuple(frame->GetPoint(i));
+  }
+  arrays.add_to(frame->GetPointData());
+
+  vtkNew<vtkRunoutHorstGraben> blocks;
+  blocks->SetInputData(frame);
+  blocks->Update();
+  vtkTable* typed = vtkTable::SafeDownCast(blocks->GetOutputDataObject(1));
+  int grabens = 0;
+  for (vtkIdType row = 0; row < typed->GetNumberOfRows(); ++row)
+    grabens += value(typed, "type_code", row) == 2;
+  ASSERT_EQ(grabens, 1);
+
+  vtkNew<vtkRunoutMorphology> morphology;
+  morphology->SetInputData(frame);
+  morphology->Update();
+  vtkTable* row = vtkTable::SafeDownCast(morphology->GetOutputDataObject(1));
+  ASSERT_EQ(row->GetNumberOfRows(), 1);
+  EXPECT_EQ(value(row, "troughs"), 0);
+  for (vtkIdType c = 0; c < row->GetNumberOfColumns(); ++c) {
+    const std::string name = row->GetColumnName(c);
+    if (name.find("graben") != std::string::npos && name.rfind("initial", 0) != 0) {
+      EXPECT_EQ(value(row, name.c_str()), grabens) << name;
+    }
+  }
 }

@@ -77,8 +77,11 @@ const std::vector<Column<FrameMorphology>>& morphology_columns() {
       measure("thickness_ratio", [](const M& m) { return m.evidence.thickness_ratio; }),
       measure("late_stretch", [](const M& m) { return m.evidence.late_stretch; }),
       count("particles", [](const M& m) { return m.now.particles; }),
-      count("grabens", [](const M& m) { return m.evidence.grabens; }),
-      count("initial_grabens", [](const M& m) { return m.evidence.initial_grabens; }),
+      // Troughs of the surface, not grabens: Runout Horsts And Grabens
+      // calls a graben a block between shear bands, which this rule does
+      // not see, and the two counts differ on the same frame.
+      count("troughs", [](const M& m) { return m.evidence.grabens; }),
+      count("initial_troughs", [](const M& m) { return m.evidence.initial_grabens; }),
       count("mechanism_id", [](const M& m) { return static_cast<int>(m.mechanism); }),
       {"mechanism", [](const M& m) { return std::string(mechanism_name(m.mechanism)); }},
   };

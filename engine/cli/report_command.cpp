@@ -102,7 +102,7 @@ std::string mechanism_section(const std::string& pvd_path) {
       });
   if (run.frames.empty()) return "<h2>Mechanism</h2>\n<p>No frame could be analysed.</p>\n";
   const std::vector<std::string> names = {"runout", "length", "max_thickness", "length_ratio",
-                                          "late_stretch", "grabens", "mechanism"};
+                                          "late_stretch", "troughs", "mechanism"};
   std::vector<std::string> header = {"time [s]"};
   header.insert(header.end(), names.begin(), names.end());
   std::vector<std::vector<std::string>> rows;

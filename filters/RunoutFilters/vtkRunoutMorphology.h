@@ -20,7 +20,7 @@
  * `length`, `max_thickness`, `runout`, `toe_velocity`, the centroid
  * (`centroid_x`, `centroid_y`, `centroid_s`, `centroid_velocity`),
  * `outside_mass`, `initial_toe`, `length_ratio` (L / L0), `thickness_ratio`
- * (Hmax / H0), `particles`, `grabens`, `initial_grabens`, `mechanism_id` and
+ * (Hmax / H0), `particles`, `troughs`, `initial_troughs`, `mechanism_id` and
  * `mechanism` (docs/filters.md, "Runout morphology"). The initial values
  * (toe, L0, H0) are those of the particles' `initial_position`, the t = 0
  * configuration, so one frame is enough: the runout is relative to the

@@ -69,8 +69,9 @@ int vtkRunoutSeriesReader::RequestInformation(
   this->Frames.clear();
   if (!this->FileName || !*this->FileName)
   {
-    vtkErrorMacro(<< "No FileName: give the run's .pvd index.");
-    return 0;
+    // ParaView asks for the information as soon as the source is made,
+    // before the user has picked a file: no file yet is not an error.
+    return 1;
   }
   try
   {
@@ -114,6 +115,11 @@ int vtkRunoutSeriesReader::RequestData(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outInfo);
   output->Initialize();
+  if (!this->FileName || !*this->FileName)
+  {
+    vtkErrorMacro(<< "No file: pick the run's .pvd index (File Name).");
+    return 1;
+  }
   if (this->Frames.empty())
   {
     return 1;
@@ -159,11 +165,20 @@ int vtkRunoutSeriesReader::RequestData(
 std::size_t vtkRunoutSeriesReader::FrameAt(double time) const
 {
   std::size_t k = 0;
-  while (k + 1 < this->Frames.size() && this->Frames[k + 1].first <= time)
+  while (k + 1 < this->Frames.size() && this->Frames[k + 1].first <= time + this->TimeTolerance(k))
   {
     ++k;
   }
   return k;
+}
+
+//------------------------------------------------------------------------------
+double vtkRunoutSeriesReader::TimeTolerance(std::size_t k) const
+{
+  // The index stores the sum of the steps (27.700000000000003 for 27.7):
+  // a time asked within a millionth of the interval of frame k + 1 is
+  // that frame's, not the one before it.
+  return 1e-6 * (this->Frames[k + 1].first - this->Frames[k].first);
 }
 
 //------------------------------------------------------------------------------

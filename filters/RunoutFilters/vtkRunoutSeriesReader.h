@@ -7,7 +7,8 @@
  * `<name>.pvd.manifest` with each frame's size and CRC-32, recorded as the
  * frame was written (docs/output.md). This reader offers the index's times
  * as TIME_STEPS, as vtkPVDReader does; for the requested time it takes the
- * last frame at or before it, and reads the file with
+ * last frame at or before it (a frame stored a rounding error after the
+ * time asked counts as at it), and reads the file with
  * vtkXMLUnstructuredGridReader only when its size and CRC-32 match the
  * manifest. A frame that is missing, not in the manifest, of another size
  * or checksum, or that VTK cannot read, gives a warning naming the file and
@@ -15,7 +16,8 @@
  * (one changed base64 character in a compression header made VTK 5.11's
  * reader abort the whole ParaView), and Runout Morphology History skips
  * that step and keeps the others. A run without a manifest (older than the
- * manifest) is read unchecked, with one warning saying so.
+ * manifest) is read unchecked, with one warning saying so. Without a file
+ * name it offers no time steps and reports nothing until it is run.
  */
 #ifndef vtkRunoutSeriesReader_h
 #define vtkRunoutSeriesReader_h
@@ -56,8 +58,11 @@ private:
   vtkRunoutSeriesReader(const vtkRunoutSeriesReader&) = delete;
   void operator=(const vtkRunoutSeriesReader&) = delete;
 
-  // The entry of Frames shown at `time`: the last at or before it.
+  // The entry of Frames shown at `time`: the last at or before it, up to
+  // TimeTolerance.
   std::size_t FrameAt(double time) const;
+  // How far after `time` frame k + 1 may lie and still be the one shown.
+  double TimeTolerance(std::size_t k) const;
   // Says once per index that its run has no manifest to check against.
   void WarnNoManifest();
 

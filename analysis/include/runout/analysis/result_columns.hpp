@@ -44,9 +44,10 @@ const std::vector<Column<SlideBlock>>& block_columns();
 // The morphology table, one row per frame after its time (the column
 // kTimeColumn): toe, rear, length, max_thickness, runout, toe_velocity,
 // centroid_x, centroid_y, centroid_s, centroid_velocity, outside_mass,
-// initial_toe, length_ratio, thickness_ratio, late_stretch (NaN, all of
-// them, for a frame without particles; late_stretch also without a series),
-// particles, grabens, initial_grabens, mechanism_id, mechanism.
+// initial_toe, length_ratio, thickness_ratio (NaN, all of them, for a frame
+// without particles), late_stretch (NaN without the frames before),
+// particles, troughs, initial_troughs, mechanism_id,
+// mechanism.
 // "Time", not "time": ParaView's line chart takes a column of that name as
 // its x axis, so the morphology history plots against time as it opens.
 constexpr const char* kTimeColumn = "Time";
