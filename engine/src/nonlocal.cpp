@@ -83,28 +83,37 @@ double NonlocalAverage::band_peak(double spacing_over_length, double s) {
 
 // field (ay.count rows of ax.count) convolved with the taps along x into
 // pass_, then along y back into field, both as sums over the taps of whole
-// shifted rows (contiguous, so they vectorise); rows that are zero, most of
-// a slide's bounding box, are skipped. Each output is summed in the same
-// order whatever the threads, which split the rows.
+// shifted rows (contiguous, so they vectorise). Each row is worked only
+// over the span where it is not zero, widened by the taps along x: a long
+// or diagonal slide fills a small part of each row of its bounding box,
+// and rows that are zero are skipped whole. Adding the zeros left out
+// changed no sum, and each output is summed in the same order whatever the
+// threads, which split the rows.
 void NonlocalAverage::convolve(std::vector<double>& field, const Axis& ax, const Axis& ay) {
   const int nx = ax.count, ny = ay.count;
   const int rx = static_cast<int>(ax.taps.size()) - 1, ry = static_cast<int>(ay.taps.size()) - 1;
   pass_.assign(field.size(), 0.0);
-  nonzero_.assign(ny, 0);
+  spans_.assign(ny, Span{});
 #pragma omp parallel for schedule(static) if (nx * ny > kParallelMin)
   for (int j = 0; j < ny; ++j) {
     const double* in = field.data() + static_cast<std::size_t>(j) * nx;
     double* out = pass_.data() + static_cast<std::size_t>(j) * nx;
-    if (std::all_of(in, in + nx, [](double v) { return v == 0.0; })) continue;
-    nonzero_[j] = 1;
+    int lo = 0;
+    while (lo < nx && in[lo] == 0.0) ++lo;
+    if (lo == nx) continue;
+    int hi = nx;
+    while (in[hi - 1] == 0.0) --hi;
+    // in is zero outside [lo, hi); out is not outside [lo - rx, hi + rx),
+    // the whole row where it wraps.
+    spans_[j] = ax.wrap > 0 ? Span{0, nx} : Span{std::max(0, lo - rx), std::min(nx, hi + rx)};
     for (int k = -rx; k <= rx; ++k) {
       const double w = ax.taps[std::abs(k)];
       if (ax.wrap > 0) {
         for (int i = 0; i < nx; ++i) out[i] += w * in[((i + k) % nx + nx) % nx];
       } else {
-        // out[i] += w in[i + k] for 0 <= i + k < nx
-        const int lo = std::max(0, -k), hi = std::min(nx, nx - k);
-        for (int i = lo; i < hi; ++i) out[i] += w * in[i + k];
+        // out[i] += w in[i + k] for lo <= i + k < hi
+        const int first = std::max(0, lo - k), last = std::min(nx, hi - k);
+        for (int i = first; i < last; ++i) out[i] += w * in[i + k];
       }
     }
   }
@@ -113,10 +122,11 @@ void NonlocalAverage::convolve(std::vector<double>& field, const Axis& ax, const
     double* out = field.data() + static_cast<std::size_t>(j) * nx;
     std::fill(out, out + nx, 0.0);
     for (int k = std::max(-ry, -j); k <= std::min(ry, ny - 1 - j); ++k) {
-      if (!nonzero_[j + k]) continue;
+      const Span span = spans_[j + k];
+      if (span.first == span.last) continue;
       const double w = ay.taps[std::abs(k)];
       const double* in = pass_.data() + static_cast<std::size_t>(j + k) * nx;
-      for (int i = 0; i < nx; ++i) out[i] += w * in[i];
+      for (int i = span.first; i < span.last; ++i) out[i] += w * in[i];
     }
   }
 }

@@ -107,7 +107,10 @@ class NonlocalAverage {
   bool active_ = false;
   Axis ax_, ay_;
   std::vector<double> increments_, volumes_, pass_;  // the spread V a and V, and the x pass
-  std::vector<char> nonzero_;                        // the rows of the x pass that are not zero
+  struct Span {
+    int first = 0, last = 0;  // the columns [first, last) of a row of the x pass that are not zero
+  };
+  std::vector<Span> spans_;  // per row; first == last: the row is zero
   struct Image {
     double x, y, vol;  // a particle's image in the no-slip base, and its volume
   };
