@@ -6,7 +6,11 @@
 // it byte for byte; a new run clears a killed run's temporaries; resume
 // refuses another run's checkpoint, a device or an absurd stated size before
 // reading it, and indices out of the scene's range; the at-rest stop comes
-// between output rows.
+// between output rows. A resume whose folder does not go with its
+// checkpoint (a kept frame changed, history.csv cut short, another run's
+// frames) exits 79 with the folder as it was; a checkpoint forged with a
+// valid hash (no particles, extra index entries, a NaN time) is refused;
+// the lock file is never written through a link.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -16,8 +20,10 @@
 #include <chrono>
 #include <climits>
 #include <cstdint>
+#include <cmath>
 #include <functional>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -81,6 +87,16 @@ std::vector<std::string> temporaries(const fs::path& dir) {
     if (e.path().filename().string().find(".tmp.") != std::string::npos)
       found.push_back(e.path().filename().string());
   return found;
+}
+
+// Every file of a folder and its bytes, but the lock file, which each
+// process that takes the lock writes its pid into.
+std::map<std::string, std::string> folder_bytes(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename() != kOutputLockFile)
+      files[e.path().filename().string()] = read_file(e.path());
+  return files;
 }
 
 int frame_files(const fs::path& dir) {
@@ -177,6 +193,15 @@ class HostileCheckpoint : public ::testing::Test {
     change(cp);
     write_checkpoint(checkpoint().string(), cp.state, cp.particles);
   }
+  // A resume refused with exit 79 and `message`, every file as it was.
+  void expect_refused_unchanged(const std::string& message) const {
+    const auto before = folder_bytes(out());
+    const cli_runner::Result r = run_cli("resume -q " + out().string());
+    EXPECT_EQ(r.code, 79) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the folder is left as it was"), std::string::npos) << r.output;
+    EXPECT_TRUE(folder_bytes(out()) == before) << "the refused resume changed the folder";
+  }
   ScratchFolder folder_;
   std::string scene_;
 };
@@ -239,6 +264,82 @@ TEST_F(HostileCheckpoint, AnIndexEntryOutOfTheFolderIsRefused) {
   const cli_runner::Result r = run_cli("resume -q " + out().string());
   EXPECT_EQ(r.code, 65) << r.output;
   EXPECT_NE(r.output.find("index entry 1 is not frame 1"), std::string::npos) << r.output;
+}
+
+// The run's last checkpoint is at t = 1.5 s (row 30): it keeps frames 0
+// to 3 and 31 history rows; frame 4 and the rows after it are redone.
+TEST_F(HostileCheckpoint, ADamagedKeptFrameRefusesTheResumeAndChangesNothing) {
+  const std::string frame = read_file(out() / "frame_00002.vtu");
+  folder_.write("out/frame_00002.vtu", frame.substr(0, frame.size() - 100));
+  expect_refused_unchanged("frame_00002.vtu is not the frame the checkpoint kept");
+  const cli_runner::Result verified = run_cli("verify " + out().string());
+  EXPECT_EQ(verified.code, 65) << verified.output;  // the damage is still reported
+}
+
+TEST_F(HostileCheckpoint, AShortHistoryRefusesTheResumeAndDeletesNothing) {
+  const std::string history = read_file(out() / "history.csv");
+  std::size_t end = 0;
+  for (int line = 0; line < 12; ++line) end = history.find('\n', end) + 1;
+  folder_.write("out/history.csv", history.substr(0, end));  // the header and 11 rows
+  ASSERT_TRUE(fs::exists(out() / "frame_00004.vtu"));  // a frame after the checkpoint
+  ASSERT_TRUE(fs::exists(out() / "summary.json"));
+  expect_refused_unchanged("holds 11 rows, fewer than the 31 its checkpoint counts");
+}
+
+TEST_F(HostileCheckpoint, AnotherRunsCheckpointWithItsSceneIsRefused) {
+  // The same length of run, so that only its frames tell it apart.
+  std::string steeper = long_scene("2.0");
+  steeper.replace(steeper.find("slope_angle = 10.0"), 18, "slope_angle = 20.0");
+  const std::string other = folder_.write("steeper.toml", steeper);
+  const fs::path elsewhere = folder_.path() / "elsewhere";
+  ASSERT_EQ(run_cli("run " + other + " -q -t 1 --checkpoint-every 0.5 -o " + elsewhere.string())
+                .code,
+            0);
+  for (const char* file : {kCheckpointFile, "scene.resolved.toml"})
+    fs::copy_file(elsewhere / file, out() / file, fs::copy_options::overwrite_existing);
+  expect_refused_unchanged("frame_00001.vtu is not the frame the checkpoint kept");
+}
+
+TEST_F(HostileCheckpoint, NoParticlesAreRefused) {
+  write_modified([](Checkpoint& cp) { cp.particles = Particles{}; });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("no particles"), std::string::npos) << r.output;
+}
+
+TEST_F(HostileCheckpoint, ExtraIndexEntriesAreRefused) {
+  write_modified([](Checkpoint& cp) {
+    ScheduleState& k = cp.state.schedule;
+    for (const char* file : {"frame_00004.vtu", "frame_00005.vtu"}) {
+      k.pvd.emplace_back(k.pvd.back().first, file);
+      k.frame_records.push_back(std::string(file) + " 0 unreadable");
+    }
+    k.frames += 2;
+  });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("it counts 6 frames, its history row 30 gives 4"), std::string::npos)
+      << r.output;
+}
+
+TEST_F(HostileCheckpoint, ANaNIndexTimeIsRefused) {
+  write_modified([](Checkpoint& cp) { cp.state.schedule.pvd[1].first = std::nan(""); });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("index entry 1 has time nan"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(out() / "small.pvd").find("nan"), std::string::npos);
+}
+
+TEST(OutputLock, ALinkedLockFileIsNotWrittenThrough) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
+  const std::string target = folder.write("precious.txt", "not a lock\n");
+  fs::create_directories(folder.path() / "out");
+  fs::create_symlink(target, folder.path() / "out" / kOutputLockFile);
+  const cli_runner::Result r = run_cli("run " + scene + " -q -o " + (folder.path() / "out").string());
+  EXPECT_EQ(r.code, 73) << r.output;
+  EXPECT_NE(r.output.find(".runout.lock is a symbolic link"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(target), "not a lock\n");
 }
 
 TEST(AtRest, TheStopComesBetweenOutputRows) {

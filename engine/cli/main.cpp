@@ -3,7 +3,9 @@
 // (frames before it are kept), 69 the backend asked for cannot run here, 73
 // the output cannot be written, 75 another runout writes into the output
 // folder. `resume`: 66 no checkpoint in the folder, 65 one that is corrupt,
-// of another version or of another run. A run stopped by SIGINT, SIGTERM or
+// of another version or of another run, 79 a folder that does not go with
+// its checkpoint (a kept frame changed, history.csv too short), left as it
+// was. A run stopped by SIGINT, SIGTERM or
 // SIGHUP exits 128 + the signal's number (130, 143, 129), as a shell
 // reports a process the signal killed.
 #include <omp.h>
@@ -16,14 +18,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <iostream>
 #include <optional>
 
 #include "analyse_command.hpp"
 #include "budget_check.hpp"
+#include "number_checks.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
 #include "thread_count.hpp"
@@ -57,6 +58,7 @@ enum Exit {
   kBlowUp = 70,
   kCantCreate = 73,
   kFolderBusy = 75,   // EX_TEMPFAIL: it may work once the other run is done
+  kResumeRefused = 79,  // past sysexits' range: the folder does not go with its checkpoint
   kSignalBase = 128
 };
 
@@ -106,8 +108,7 @@ void add_scene_args(CLI::App* cmd, SceneArgs& a) {
 // The scene's text, for the line of a key in a refusal after the parse.
 SceneSource source_of(const SceneArgs& a) {
   if (a.path.empty()) return {"default.toml", std::string(default_scene_toml())};
-  std::ifstream in(a.path, std::ios::binary);
-  return {a.path, std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>())};
+  return {a.path, read_scene_text(a.path)};
 }
 
 Scene load(const SceneArgs& a) {
@@ -141,11 +142,11 @@ void add_limit_args(CLI::App* cmd, LimitArgs& a) {
                   "Refuse a run that needs more steps than this (estimated from the initial "
                   "Courant step)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_positive());
   cmd->add_option("--max-output", a.max_output_gib,
                   "Refuse a run whose frames, uncompressed, would exceed this many GiB")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_positive());
 }
 
 // The limits; a run is bounded by the free disk of its output folder too.
@@ -259,15 +260,15 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
     write_summary(ended, opt, depth_averaged);
   };
   RunSummary r;
-  // An earlier run's summary is not this one's: a run killed before its end
-  // leaves none.
-  std::error_code ignored;
-  std::filesystem::remove(std::filesystem::path(opt.out_dir) / kSummaryFile, ignored);
   try {
     r = go(with_progress);
   } catch (const SceneError&) {
     progress.finish();
     throw;  // a scene the method cannot run: main's exit code for it
+  } catch (const ResumeRefused& e) {
+    progress.finish();
+    std::cerr << "runout: cannot resume: " << e.what() << "; the folder is left as it was\n";
+    return kResumeRefused;
   } catch (const CheckpointMissing& e) {
     progress.finish();
     std::cerr << "runout: cannot resume: " << e.what() << "\n";
@@ -430,7 +431,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--checkpoint-every", checkpoint_every,
                       "Write checkpoint.bin every SECONDS of simulated time (rounded to "
                       "history rows), for `runout resume`")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_positive());
   std::string resume_dir;
   CLI::App* resume_cmd = app.add_subcommand(
       "resume", "Continue a run from the checkpoint.bin in its output folder");
@@ -448,7 +449,7 @@ int main(int argc, char** argv) {
   check_cmd->add_option("--budget", budget,
                         "Estimate the finest cell size per method that runs within SECONDS "
                         "here, and pick a method")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_positive());
   StudyArgs study_args;
   CLI::App* study_cmd = nullptr;
   add_study_command(app, study_args, study_cmd);

@@ -21,6 +21,7 @@
 #include "runout/scene_parser.hpp"
 #include "runout/study.hpp"
 #include "child_process.hpp"
+#include "number_checks.hpp"
 #include "study_parameters.hpp"
 #include "study_slurm.hpp"
 
@@ -481,7 +482,9 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
                            "here or on Slurm; one CSV row per run with its result, its cost and "
                            "its error against the finest run or the analytic answer");
   cmd->add_option("scene", a.scene, "Scene file (TOML); the built-in default scene if omitted");
-  cmd->add_option("--cells", a.cells, "Cell sizes h [m]")->delimiter(',')->check(CLI::PositiveNumber);
+  cmd->add_option("--cells", a.cells, "Cell sizes h [m]")
+      ->delimiter(',')
+      ->check(cli::finite_positive());
   cmd->add_option("--ppc", a.ppc, "Particles per cell per direction")->delimiter(',');
   cmd->add_option("--shape", a.shapes, "Shape functions: gimp, linear")
       ->delimiter(',')->check(CLI::IsMember({"gimp", "linear"}));
@@ -491,12 +494,13 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
       ->delimiter(',')->check(CLI::IsMember({"cpu", "cuda"}));
   cmd->add_option("--domain-x-max", a.domain_x_max,
                   "Far ends of the domain along x [m]: the same slide on longer paths")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(cli::finite_positive());
   cmd->add_option("--slope-angle", a.slope_angles,
                   "Slope angles [deg] of a planar-slope scene: the same slide on steeper bases")
       ->delimiter(',');
   cmd->add_option("--times", a.times, "Report the toe runout at these times [s]")
-      ->delimiter(',')->check(CLI::NonNegativeNumber);
+      ->delimiter(',')->check(cli::finite_non_negative());
   cmd->add_option("--end", a.end, "Override the end time [s]");
   cmd->add_option("--reference", a.reference,
                   "finest (the finest MPM run) or analytic-block (a rigid block on the base)")

@@ -71,12 +71,6 @@ FrameSum frame_sum(const std::string& folder, const std::string& file) {
   return sum_of(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
 }
 
-// "file size crc32".
-std::string manifest_line(const std::string& folder, const std::string& file) {
-  const FrameSum sum = frame_sum(folder, file);
-  return file + " " + std::to_string(sum.size) + " " + sum.crc;
-}
-
 // The value of attribute `key` in the element text `tag`, if it has one.
 std::optional<std::string> attribute_of(const std::string& tag, const std::string& key) {
   const std::string start = " " + key + "=\"";
@@ -89,15 +83,20 @@ std::optional<std::string> attribute_of(const std::string& tag, const std::strin
 
 }  // namespace
 
+std::string frame_record(const std::string& folder, const std::string& file) {
+  const FrameSum sum = frame_sum(folder, file);
+  return file + " " + std::to_string(sum.size) + " " + sum.crc;
+}
+
 PvdIndex::PvdIndex(std::string path, Entries entries)
     : path_(std::move(path)), frames_(std::move(entries)) {
-  for (const auto& entry : frames_) manifest_.push_back(manifest_line(folder_of(path_), entry.second));
+  for (const auto& entry : frames_) manifest_.push_back(frame_record(folder_of(path_), entry.second));
   if (!frames_.empty()) write();
 }
 
 void PvdIndex::add(double time, const std::string& relative_file) {
   frames_.emplace_back(time, relative_file);
-  manifest_.push_back(manifest_line(folder_of(path_), relative_file));
+  manifest_.push_back(frame_record(folder_of(path_), relative_file));
   write();
 }
 

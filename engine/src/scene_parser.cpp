@@ -1,11 +1,15 @@
 #include "runout/scene_parser.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <vector>
 
@@ -783,16 +787,51 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   return scene;
 }
 
-Scene load_scene_file(const std::string& path) {
-  const SceneFileError unreadable("cannot open scene file '" + path + "'");
-  // A directory opens as a stream on Linux; only a regular file is a scene.
-  std::error_code ignored;
-  if (!std::filesystem::is_regular_file(path, ignored)) throw unreadable;
-  std::ifstream in(path, std::ios::binary);
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in.is_open() || in.bad()) throw unreadable;
-  return parse_scene(text, path);
+namespace {
+
+// Closes a descriptor when it goes out of scope.
+struct FdCloser {
+  int fd;
+  ~FdCloser() { ::close(fd); }
+};
+
+// The whole of an open regular file of `size` bytes.
+std::string read_all(int fd, std::size_t size, const std::string& path) {
+  std::string text(size, '\0');
+  std::size_t at = 0;
+  while (at < size) {
+    const ssize_t n = ::read(fd, text.data() + at, size - at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0)
+      throw SceneFileError("cannot read scene file '" + path + "': " + std::strerror(errno));
+    if (n == 0) break;  // shrunk while read: what is there
+    at += static_cast<std::size_t>(n);
+  }
+  text.resize(at);
+  return text;
 }
+
+}  // namespace
+
+std::string read_scene_text(const std::string& path) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer before fstat
+  // refuses it.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0)
+    throw SceneFileError("cannot open scene file '" + path + "': " + std::strerror(errno));
+  const FdCloser closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    throw SceneFileError("scene file '" + path +
+                         "' is not a regular file (a folder, a device or a pipe)");
+  if (static_cast<std::uint64_t>(st.st_size) > kMaxSceneBytes)
+    throw SceneFileError("scene file '" + path + "' is " + std::to_string(st.st_size) +
+                         " bytes, more than a scene may be (" + std::to_string(kMaxSceneBytes) +
+                         " bytes, 16 MiB)");
+  return read_all(fd, static_cast<std::size_t>(st.st_size), path);
+}
+
+Scene load_scene_file(const std::string& path) { return parse_scene(read_scene_text(path), path); }
 
 void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optional<int> ppc,
                      std::optional<double> end_time) {

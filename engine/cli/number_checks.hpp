@@ -1,0 +1,35 @@
+#pragma once
+// Checks of numeric options. CLI11's PositiveNumber and NonNegativeNumber
+// let "nan" and "inf" through (every comparison with NaN is false), and a
+// NaN limit switches the limit off; these refuse any number that is not
+// finite.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace runout::cli {
+
+// A number that is finite and above lo (or at least lo where lo_allowed).
+inline CLI::Validator finite_number(double lo, bool lo_allowed) {
+  char lo_text[32];
+  std::snprintf(lo_text, sizeof lo_text, "%g", lo);
+  const std::string bound = std::string(lo_allowed ? "at least " : "above ") + lo_text;
+  return CLI::Validator(
+      [lo, lo_allowed, bound](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool number = !text.empty() && end && *end == '\0';
+        if (number && std::isfinite(v) && (v > lo || (lo_allowed && v == lo))) return "";
+        return "must be a finite number " + bound + ", not '" + text + "'";
+      },
+      "FINITE " + bound);
+}
+
+// Finite and above 0.
+inline CLI::Validator finite_positive() { return finite_number(0.0, false); }
+// Finite and at least 0.
+inline CLI::Validator finite_non_negative() { return finite_number(0.0, true); }
+
+}  // namespace runout::cli

@@ -1,0 +1,104 @@
+// What the CLI reads before it runs anything: a scene path that is not a
+// regular file (a folder, a device, a pipe) or is larger than a scene may
+// be is refused with exit 66 before it is read; a numeric option that is
+// not a finite number ("nan", "inf") is refused with exit 64 instead of
+// switching its limit off. And history.csv under a failing disk: a row is
+// in the file whole or not at all, and the error gives the reason.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "cli_runner.hpp"
+#include "run_folder.hpp"
+#include "runout/history.hpp"
+#include "runout/scene_parser.hpp"
+
+using namespace runout;
+using namespace runout::run_folder;
+using runout::cli_runner::run_cli;
+
+TEST(SceneFile, AFolderIsRefusedBeforeReading) {
+  ScratchFolder folder;
+  for (const char* command : {"check ", "run "}) {
+    const cli_runner::Result r = run_cli(command + folder.path().string());
+    EXPECT_EQ(r.code, 66) << r.output;
+    EXPECT_NE(r.output.find("is not a regular file"), std::string::npos) << r.output;
+  }
+}
+
+TEST(SceneFile, ADeviceOrAPipeIsRefusedBeforeReading) {
+  ScratchFolder folder;
+  const fs::path fifo = folder.path() / "scene.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& path : {std::string("/dev/zero"), fifo.string()}) {
+    const cli_runner::Result r = run_cli("check " + path);
+    EXPECT_EQ(r.code, 66) << r.output;
+    EXPECT_NE(r.output.find("is not a regular file"), std::string::npos) << r.output;
+  }
+}
+
+TEST(SceneFile, AFileLargerThanASceneMayBeIsRefused) {
+  ScratchFolder folder;
+  const std::string path = folder.write("huge.toml", cli_runner::kSmallScene);
+  fs::resize_file(path, kMaxSceneBytes + 1);  // sparse: no disk used
+  const cli_runner::Result r = run_cli("check " + path);
+  EXPECT_EQ(r.code, 66) << r.output;
+  EXPECT_NE(r.output.find("more than a scene may be (16777216 bytes, 16 MiB)"), std::string::npos)
+      << r.output;
+}
+
+TEST(NumericOptions, NotFiniteNumbersAreRefused) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
+  const std::string out = " -q -o " + (folder.path() / "out").string();
+  for (const std::string option :
+       {"run --max-steps nan", "run --max-output nan", "run --checkpoint-every nan",
+        "run --checkpoint-every inf", "check --max-steps inf", "check --budget nan"}) {
+    SCOPED_TRACE(option);
+    const bool run = option.rfind("run", 0) == 0;
+    const cli_runner::Result r = run_cli(option + " " + scene + (run ? out : ""));
+    EXPECT_EQ(r.code, 64) << r.output;
+    EXPECT_NE(r.output.find("must be a finite number above 0"), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(folder.path() / "out"));
+}
+
+// A child process whose files may not grow past 1000 bytes (RLIMIT_FSIZE:
+// a full disk on demand, EFBIG for ENOSPC) appends rows until a write
+// fails; its exit code says whether the failure came with its reason.
+TEST(History, AFailedWriteLeavesWholeRowsAndSaysWhy) {
+  ScratchFolder folder;
+  const std::string path = (folder.path() / "history.csv").string();
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);  // the write then fails with EFBIG
+    const rlimit limit{1000, 1000};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      HistoryWriter history(path);
+      HistoryRow row;
+      for (int k = 0; k < 100; ++k) {
+        row.time = 0.1 * k + 1.0 / 3.0;
+        row.step = k;
+        history.append(row);
+      }
+    } catch (const std::runtime_error& e) {
+      ::_exit(std::string(e.what()).find("File too large") != std::string::npos ? 0 : 2);
+    }
+    ::_exit(1);  // no write failed
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no write failed, 2: the error gave no reason";
+  const std::string text = read_file(path);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n') << "a torn last row: ..." << text.substr(text.size() - 40);
+}
