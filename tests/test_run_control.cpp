@@ -10,7 +10,10 @@
 // checkpoint (a kept frame changed, history.csv cut short, another run's
 // frames) exits 79 with the folder as it was; a checkpoint forged with a
 // valid hash (no particles, extra index entries, a NaN time) is refused;
-// the lock file is never written through a link.
+// the lock file is never written through a link. A study holds its folder
+// alone, passes a stop signal on to its runs, and refuses a matrix beyond
+// its bound.
+#include <errno.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -340,6 +343,51 @@ TEST(OutputLock, ALinkedLockFileIsNotWrittenThrough) {
   EXPECT_EQ(r.code, 73) << r.output;
   EXPECT_NE(r.output.find(".runout.lock is a symbolic link"), std::string::npos) << r.output;
   EXPECT_EQ(read_file(target), "not a lock\n");
+}
+
+// A study of one long run: a second study into its folder is refused, and
+// SIGTERM to the study stops its child at a step with a checkpoint.
+TEST(Study, OneStudyPerFolderAndItsSignalStopsItsRuns) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("long.toml", long_scene("60.0"));
+  const fs::path out = folder.path() / "study";
+  const std::string args = " --cells 0.5 --ppc 1 -j 1 -t 1 --out " + out.string();
+  const pid_t study = start({"study", scene, "--cells", "0.5", "--ppc", "1", "-j", "1", "-t", "1",
+                             "--out", out.string()},
+                            folder.path() / "study.log");
+  const fs::path run = out / "runs" / "mpm_cpu_gimp_h0.5_ppc1";
+  ASSERT_TRUE(wait_for_file(run / "frame_00001.vtu")) << read_file(folder.path() / "study.log");
+
+  const cli_runner::Result second = run_cli("study " + scene + args);
+  EXPECT_EQ(second.code, 75) << second.output;
+  EXPECT_NE(second.output.find("is in use by another runout (pid " + std::to_string(study)),
+            std::string::npos)
+      << second.output;
+
+  const pid_t child = std::stoi(read_file(run / kOutputLockFile));
+  ::kill(study, SIGTERM);
+  EXPECT_EQ(wait_for(study), 128 + SIGTERM) << read_file(folder.path() / "study.log");
+  EXPECT_TRUE(::kill(child, 0) != 0 && errno == ESRCH) << "the study's run goes on";
+  EXPECT_TRUE(fs::exists(run / kCheckpointFile)) << read_file(run / "run.log");
+}
+
+TEST(Study, AStudyBeyondItsBoundIsRefusedBeforeItStarts) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
+  const std::string out = " --out " + (folder.path() / "study").string();
+  const cli_runner::Result samples = run_cli(
+      "study " + scene + " --vary 'material.clay.density=uniform(500,700)' --sample 1000000" + out);
+  EXPECT_EQ(samples.code, 65) << samples.output;
+  EXPECT_NE(samples.output.find("--sample: 1000000 runs, more than a study holds (10000)"),
+            std::string::npos)
+      << samples.output;
+  const cli_runner::Result matrix = run_cli(
+      "study " + scene + " --vary 'material.clay.density=uniform(500,700)' --sample 5000" +
+      " --cells 1,0.5,0.25" + out);
+  EXPECT_EQ(matrix.code, 65) << matrix.output;
+  EXPECT_NE(matrix.output.find("15000 runs, more than a study holds"), std::string::npos)
+      << matrix.output;
+  EXPECT_FALSE(fs::exists(folder.path() / "study"));
 }
 
 TEST(AtRest, TheStopComesBetweenOutputRows) {

@@ -15,6 +15,9 @@ pid_t spawn(const std::vector<std::string>& args, const std::filesystem::path& o
   argv.push_back(nullptr);
   const pid_t pid = fork();
   if (pid != 0) return pid;
+  // A group of its own: a terminal's Ctrl-C reaches the study alone, which
+  // passes it on once (a second signal would kill the run unsaved).
+  setpgid(0, 0);
   const int fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd >= 0) {
     dup2(fd, STDOUT_FILENO);

@@ -10,7 +10,8 @@
 namespace runout {
 
 // fork + exec of args[0] (searched on PATH when it has no '/'), its stdout
-// (and stderr when with_stderr) into `out`. The pid, or -1 when fork fails.
+// (and stderr when with_stderr) into `out`, in a process group of its own.
+// The pid, or -1 when fork fails.
 pid_t spawn(const std::vector<std::string>& args, const std::filesystem::path& out,
             bool with_stderr);
 

@@ -65,12 +65,14 @@ enum Exit {
 void on_stop_signal(int signal) { request_stop(signal); }
 
 // The first SIGINT, SIGTERM or SIGHUP asks the run to stop at the next step
-// and checkpoint; SA_RESETHAND lets a second one kill it at once.
-void stop_on_signals() {
+// and checkpoint; SA_RESETHAND lets a second one kill it at once. A study
+// takes them without SA_RESTART: its wait for a child returns at once to
+// pass the signal on.
+void stop_on_signals(bool restart) {
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  action.sa_flags = SA_RESETHAND | (restart ? SA_RESTART : 0);
   for (const int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &action, nullptr);
 }
 
@@ -471,7 +473,8 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   if (threads > 0) omp_set_num_threads(threads);
-  if (*run_cmd || *resume_cmd) stop_on_signals();
+  if (*run_cmd || *resume_cmd) stop_on_signals(true);
+  if (*study_cmd) stop_on_signals(false);
   try {
     if (*run_cmd)
       return run(load(run_args), source_of(run_args), out, backend, quiet, checkpoint_every,

@@ -1,8 +1,10 @@
 #include "study_command.hpp"
 
+#include <signal.h>
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +19,7 @@
 #include "runout/atomic_file.hpp"
 #include "runout/device_info.hpp"
 #include "runout/memory_estimate.hpp"
+#include "runout/run_control.hpp"
 #include "runout/run_summary_file.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/study.hpp"
@@ -146,6 +149,17 @@ Scene child_scene(const RunSpec& r) {
   return s;
 }
 
+// The rows expand_matrix gives, counted before any scene is parsed: an
+// MPM method runs each shape and ppc, the depth-averaged one once per cell.
+double matrix_runs(const StudyArgs& a, std::size_t points) {
+  double per_cell = 0;
+  for (const std::string& method : a.methods)
+    per_cell += method == "dam" ? 1.0 : double(a.shapes.size()) * double(a.ppc.size());
+  return double(points) * double(std::max<std::size_t>(1, a.domain_x_max.size())) *
+         double(std::max<std::size_t>(1, a.slope_angles.size())) * double(a.backends.size()) *
+         double(a.cells.size()) * per_cell;
+}
+
 std::vector<RunSpec> expand_matrix(const StudyArgs& a, std::size_t points,
                                    const std::vector<Variant>& variants) {
   std::string no_cuda;
@@ -259,8 +273,17 @@ void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>&
                std::vector<std::string>& why) {
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0, done = 0;
+  bool passed_on = false;
+  // A stop request (SIGINT, SIGTERM, SIGHUP to the study) goes to every
+  // running child once: each stops at a step with a checkpoint to resume.
+  const auto pass_on_stop = [&] {
+    if (passed_on || !stop_requested()) return;
+    passed_on = true;
+    for (const auto& [pid, k] : running) ::kill(pid, stop_requested());
+  };
   const auto launch_more = [&] {
-    for (; next < todo.size() && static_cast<int>(running.size()) < jobs; ++next) {
+    for (; !stop_requested() && next < todo.size() && static_cast<int>(running.size()) < jobs;
+         ++next) {
       const RunSpec& r = runs[todo[next]];
       const fs::path dir = runs_dir / r.id;
       fs::create_directories(dir);
@@ -271,7 +294,9 @@ void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>&
   };
   for (launch_more(); !running.empty(); launch_more()) {
     int status = 0;
+    pass_on_stop();
     const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0 && errno == EINTR) continue;  // a signal: passed on at the loop's top
     if (pid < 0) throw std::runtime_error("lost the study's runs: waitpid failed");
     const auto it = running.find(pid);
     if (it == running.end()) continue;
@@ -540,12 +565,15 @@ int run_study(const StudyArgs& given) {
   }
   const SceneSource base = [&]() -> SceneSource {
     if (a.scene.empty()) return {"default.toml", std::string(default_scene_toml())};
-    load_scene_file(a.scene);  // the file's own refusals (missing, unreadable) first
-    std::ifstream in(a.scene, std::ios::binary);
-    return {a.scene, {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}};
+    std::string text = read_scene_text(a.scene);  // a regular file of a scene's size
+    parse_scene(text, a.scene);  // the scene's own refusals before the settings'
+    return {a.scene, std::move(text)};
   }();
   const StudyParameters params =
       study_parameters(a.settings, a.vary, a.samples, a.seed, a.design);
+  require_study_size(matrix_runs(a, params.points.size()),
+                     "the matrix (scene points x domains x slopes x methods x backends x cells "
+                     "x shapes x ppc)");
   // Every point's scene parsed before anything is written or run.
   std::vector<Variant> scenes = variants(a, base, params);
 
@@ -555,8 +583,20 @@ int run_study(const StudyArgs& given) {
   std::vector<RunSpec> runs;
   std::vector<std::string> why;
   std::vector<RunResult> results;
+  // One study per folder: a second would run the first's runs again and
+  // overwrite its study.csv.
   try {
     fs::create_directories(dir / "runs");
+    lock_output_folder(dir.string());
+  } catch (const OutputFolderBusy& e) {
+    std::cerr << "runout study: " << e.what() << "\n";
+    return 75;
+  } catch (const std::exception& e) {
+    std::cerr << "runout study: " << e.what() << "\n";
+    return 73;
+  }
+  const AdoptedFolderLock lock(dir.string());
+  try {
     if (a.collect.empty()) {
       std::string words;
       for (const std::string& w : args_words(a)) words += w + "\n";
@@ -642,6 +682,7 @@ int run_study(const StudyArgs& given) {
     if (results[k].status != "ok")
       std::printf("  %s: %s: %s\n", runs[k].id.c_str(), results[k].status.c_str(),
                   results[k].note.c_str());
+  if (const int signal = stop_requested()) return 128 + signal;  // as `runout run`
   return all_ran ? 0 : 70;
 }
 
