@@ -2,8 +2,10 @@
 // regular file (a folder, a device, a pipe) or is larger than a scene may
 // be is refused with exit 66 before it is read; a numeric option that is
 // not a finite number ("nan", "inf") is refused with exit 64 instead of
-// switching its limit off. And history.csv under a failing disk: a row is
-// in the file whole or not at all, and the error gives the reason.
+// switching its limit off, and a range error prints its bound short; an
+// empty --out is refused; a refusal by the disk's free space says what
+// lifts it. And history.csv under a failing disk: a row is in the file
+// whole or not at all, and the error gives the reason.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/resource.h>
@@ -68,6 +70,50 @@ TEST(NumericOptions, NotFiniteNumbersAreRefused) {
     EXPECT_NE(r.output.find("must be a finite number above 0"), std::string::npos) << r.output;
   }
   EXPECT_FALSE(fs::exists(folder.path() / "out"));
+}
+
+TEST(NumericOptions, ARangeErrorPrintsItsBoundShort) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
+  const cli_runner::Result r = run_cli("run " + scene + " --checkpoint-every -1");
+  EXPECT_EQ(r.code, 64) << r.output;
+  EXPECT_NE(r.output.find("must be a finite number above 0, not '-1'"), std::string::npos)
+      << r.output;
+  EXPECT_LT(r.output.size(), 200u) << r.output;  // not the largest double in 309 digits
+}
+
+TEST(FolderOptions, AnEmptyFolderNameIsRefused) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
+  for (const std::string& command : {"run " + scene + " -q --out ''", std::string("resume ''"),
+                                    "study " + scene + " --out ''"}) {
+    const cli_runner::Result r = run_cli(command);
+    EXPECT_EQ(r.code, 64) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("must name a folder, not be empty"), std::string::npos) << r.output;
+  }
+}
+
+// A million particles written a million times (about 200 TB): beyond the
+// free space of any disk the test runs on, with both options raised far
+// past it, so that the disk is what refuses the run.
+TEST(Messages, AFreeSpaceRefusalSaysWhatLiftsIt) {
+  std::string s = cli_runner::kSmallScene;
+  s.replace(s.find("max = [20.0, 5.0]"), 17, "max = [300.0, 300.0]");
+  s.replace(s.find("end = 0.2"), 9, "end = 1000.0");
+  s.replace(s.find("output_interval = 0.1"), 21, "output_interval = 0.001");
+  s.replace(s.find("max = [5.0, 2.0]"), 16, "max = [251.0, 250.0]");
+  ScratchFolder folder;
+  const std::string scene = folder.write("huge.toml", s);
+  const cli_runner::Result r =
+      run_cli("run " + scene + " --max-steps 1e15 --max-output 1e9 -o " +
+              (folder.path() / "out").string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("more than the space free on the disk of"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("free space on that disk, or write to another with --out"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("--max-output"), std::string::npos) << r.output;
 }
 
 // A child process whose files may not grow past 1000 bytes (RLIMIT_FSIZE:

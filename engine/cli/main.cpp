@@ -24,7 +24,7 @@
 
 #include "analyse_command.hpp"
 #include "budget_check.hpp"
-#include "number_checks.hpp"
+#include "option_checks.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
 #include "thread_count.hpp"
@@ -161,6 +161,7 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
   if (free && *free < limits.max_output_bytes) {
     limits.max_output_bytes = *free;
     limits.output_limit_is = "the space free on the disk of " + *out_dir;
+    limits.output_remedy = "free space on that disk, or write to another with --out";
   }
   return limits;
 }
@@ -169,7 +170,7 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
 constexpr double kWallEstimateSeconds = 0.1;
 
 int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args) {
-  require_memory(s, s.method);  // the more basic refusal comes first
+  require_memory(s, s.method, source);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, nullptr), source);
   const MemoryEstimate memory = estimate_memory(s, s.method);
   // The threads a run of the scene would use, for the wall-time estimate.
@@ -332,7 +333,7 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
   RunOptions opt;
   opt.out_dir = out.empty() ? "out/" + s.name : out;
   opt.checkpoint_every = checkpoint_every;
-  require_memory(s, s.method);  // the more basic refusal comes first
+  require_memory(s, s.method, source);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, &opt.out_dir), source);
   if (default_threads) {
     cli::use_default_threads(estimate_memory(s, s.method).items);
@@ -422,7 +423,8 @@ int main(int argc, char** argv) {
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its frames and history");
   add_scene_args(run_cmd, run_args);
   add_limit_args(run_cmd, run_limits);
-  run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)");
+  run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)")
+      ->check(cli::non_empty_folder());
   run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
@@ -437,7 +439,9 @@ int main(int argc, char** argv) {
   std::string resume_dir;
   CLI::App* resume_cmd = app.add_subcommand(
       "resume", "Continue a run from the checkpoint.bin in its output folder");
-  resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")->required();
+  resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")
+      ->required()
+      ->check(cli::non_empty_folder());
   resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
       ->check(CLI::PositiveNumber);
   resume_cmd->add_flag("-q,--quiet", quiet, "No progress output");

@@ -24,7 +24,7 @@
 #include "runout/scene_parser.hpp"
 #include "runout/study.hpp"
 #include "child_process.hpp"
-#include "number_checks.hpp"
+#include "option_checks.hpp"
 #include "study_parameters.hpp"
 #include "study_slurm.hpp"
 
@@ -549,7 +549,8 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
                   "Slurm: an argument for sbatch, e.g. --sbatch-arg=--partition=long (repeatable)");
   cmd->add_option("--collect", a.collect,
                   "The CSV of the study in DIR from its runs' summaries; nothing is run");
-  cmd->add_option("-o,--out", a.out, "Study folder (default out/study/<scene name>)");
+  cmd->add_option("-o,--out", a.out, "Study folder (default out/study/<scene name>)")
+      ->check(cli::non_empty_folder());
   cmd->add_option("-j,--jobs", a.jobs, "Runs at once (default: cores / threads)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("-t,--threads", a.threads, "OpenMP threads per run")->check(CLI::PositiveNumber);

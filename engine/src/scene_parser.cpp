@@ -53,6 +53,10 @@ Range between(double lo, double hi, const char* brackets) {
 
 const Range kPpcRange = between(1, 16, "[]");
 
+// Denser than any rock or metal (osmium: 22 590 kg/m3): a density beyond it
+// is a typo, and 1e300 overflows the masses and energies within steps.
+const Range kDensityRange = between(0.0, 1e5, "(]");
+
 // Frames a run may write (time.end / time.output_interval): far beyond any
 // useful series, and well short of a file count that fills a disk.
 constexpr double kMaxFrames = 1e6;
@@ -382,7 +386,8 @@ void read_scene_info(TableReader r, Scene& scene) {
 GridSpec read_grid(TableReader r) {
   r.check_keys({"cell_size", "min", "max", "shape", "domain", "ppc"});
   GridSpec grid;
-  grid.cell_size = r.need("cell_size").number(above(0.0));
+  const Value cell_size = r.need("cell_size");
+  grid.cell_size = cell_size.number(above(0.0));
   grid.min = r.need("min").vec2();
   const Value max = r.need("max");
   grid.max = max.vec2();
@@ -391,6 +396,12 @@ GridSpec read_grid(TableReader r) {
   if (auto v = r.find("ppc")) grid.ppc = v->integer(kPpcRange);
   if ((grid.max.array() <= grid.min.array()).any())
     max.fail("must be greater than grid.min in both x and y");
+  // A cell wider than the domain would snap grid.max back onto grid.min.
+  const Eigen::Array2d extent = (grid.max - grid.min).array();
+  if ((extent < grid.cell_size).any())
+    cell_size.fail("is larger than the domain grid.min to grid.max (" +
+                   format_number(extent.x()) + " m x " + format_number(extent.y()) +
+                   " m): at least one cell must fit across it");
   // Node indices along an axis are ints (and beyond that the extent itself
   // may overflow a double).
   const Eigen::Array2d cells = (grid.max - grid.min).array() / grid.cell_size;
@@ -537,7 +548,7 @@ std::vector<MaterialSpec> read_materials(const TableReader& root) {
     m.name = name.string();
     for (const MaterialSpec& earlier : materials)
       if (earlier.name == m.name) name.fail("duplicate material name " + in_quotes(m.name));
-    m.density = r.need("density").number(above(0.0));
+    m.density = r.need("density").number(kDensityRange);
     m.youngs_modulus = r.need("youngs_modulus").number(above(0.0));
     m.poisson_ratio = r.need("poisson_ratio").number(between(-1, 0.5, "()"));
     if (m.model == MaterialModel::Tresca) read_tresca(r, m);
@@ -837,6 +848,11 @@ void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optiona
                      std::optional<double> end_time) {
   if (cell_size) {
     check_override("--cell", *cell_size, above(0.0));
+    const Eigen::Array2d extent = (scene.grid.max - scene.grid.min).array();
+    if ((extent < *cell_size).any())
+      throw_error("", 0, "--cell", "is larger than the domain grid.min to grid.max (" +
+                                       format_number(extent.x()) + " m x " +
+                                       format_number(extent.y()) + " m)");
     scene.grid.cell_size = *cell_size;
     snap_max_to_node(scene.grid);
     scene.overrides.push_back("grid.cell_size = " + format_number(*cell_size));

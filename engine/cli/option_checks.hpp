@@ -1,8 +1,8 @@
 #pragma once
-// Checks of numeric options. CLI11's PositiveNumber and NonNegativeNumber
-// let "nan" and "inf" through (every comparison with NaN is false), and a
-// NaN limit switches the limit off; these refuse any number that is not
-// finite.
+// Checks of options beyond CLI11's own. Its PositiveNumber and
+// NonNegativeNumber let "nan" and "inf" through (every comparison with NaN
+// is false), and a NaN limit switches the limit off; and an empty folder
+// name would fall back to the default folder unnoticed.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -31,5 +31,14 @@ inline CLI::Validator finite_number(double lo, bool lo_allowed) {
 inline CLI::Validator finite_positive() { return finite_number(0.0, false); }
 // Finite and at least 0.
 inline CLI::Validator finite_non_negative() { return finite_number(0.0, true); }
+
+// A folder name that is not empty.
+inline CLI::Validator non_empty_folder() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "must name a folder, not be empty" : "";
+      },
+      "FOLDER");
+}
 
 }  // namespace runout::cli
