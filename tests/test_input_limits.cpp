@@ -97,13 +97,13 @@ TEST(FolderOptions, AnEmptyFolderNameIsRefused) {
 // free space of any disk the test runs on, with both options raised far
 // past it, so that the disk is what refuses the run.
 TEST(Messages, AFreeSpaceRefusalSaysWhatLiftsIt) {
-  std::string s = cli_runner::kSmallScene;
-  s.replace(s.find("max = [20.0, 5.0]"), 17, "max = [300.0, 300.0]");
-  s.replace(s.find("end = 0.2"), 9, "end = 1000.0");
-  s.replace(s.find("output_interval = 0.1"), 21, "output_interval = 0.001");
-  s.replace(s.find("max = [5.0, 2.0]"), 16, "max = [251.0, 250.0]");
   ScratchFolder folder;
-  const std::string scene = folder.write("huge.toml", s);
+  const std::string scene = folder.write(
+      "huge.toml", cli_runner::edited(cli_runner::kSmallScene,
+                                      {{"max = [20.0, 5.0]", "max = [300.0, 300.0]"},
+                                       {"end = 0.2", "end = 1000.0"},
+                                       {"output_interval = 0.1", "output_interval = 0.001"},
+                                       {"max = [5.0, 2.0]", "max = [251.0, 250.0]"}}));
   const cli_runner::Result r =
       run_cli("run " + scene + " --max-steps 1e15 --max-output 1e9 -o " +
               (folder.path() / "out").string());
