@@ -69,6 +69,11 @@ TEST(NumericOptions, NotFiniteNumbersAreRefused) {
     EXPECT_EQ(r.code, 64) << r.output;
     EXPECT_NE(r.output.find("must be a finite number above 0"), std::string::npos) << r.output;
   }
+  const cli_runner::Result bins =
+      run_cli("analyse " + folder.path().string() + " --bin-spacings nan");
+  EXPECT_EQ(bins.code, 64) << bins.output;
+  EXPECT_NE(bins.output.find("--bin-spacings: must be a finite number in ["), std::string::npos)
+      << bins.output;
   EXPECT_FALSE(fs::exists(folder.path() / "out"));
 }
 

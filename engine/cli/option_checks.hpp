@@ -1,36 +1,42 @@
 #pragma once
-// Checks of options beyond CLI11's own. Its PositiveNumber and
-// NonNegativeNumber let "nan" and "inf" through (every comparison with NaN
+// Checks of options beyond CLI11's own. Its PositiveNumber,
+// NonNegativeNumber and Range let "nan" through (every comparison with NaN
 // is false), and a NaN limit switches the limit off; and an empty folder
 // name would fall back to the default folder unnoticed.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <string>
 
 namespace runout::cli {
 
-// A number that is finite and above lo (or at least lo where lo_allowed).
-inline CLI::Validator finite_number(double lo, bool lo_allowed) {
-  char lo_text[32];
-  std::snprintf(lo_text, sizeof lo_text, "%g", lo);
-  const std::string bound = std::string(lo_allowed ? "at least " : "above ") + lo_text;
+// A number that is finite and that `ok` accepts; `bound` says which ones
+// it accepts ("above 0"), for the refusal.
+inline CLI::Validator finite_number(std::function<bool(double)> ok, const std::string& bound) {
   return CLI::Validator(
-      [lo, lo_allowed, bound](std::string& text) -> std::string {
+      [ok, bound](std::string& text) -> std::string {
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
         const bool number = !text.empty() && end && *end == '\0';
-        if (number && std::isfinite(v) && (v > lo || (lo_allowed && v == lo))) return "";
+        if (number && std::isfinite(v) && ok(v)) return "";
         return "must be a finite number " + bound + ", not '" + text + "'";
       },
       "FINITE " + bound);
 }
 
-// Finite and above 0.
-inline CLI::Validator finite_positive() { return finite_number(0.0, false); }
-// Finite and at least 0.
-inline CLI::Validator finite_non_negative() { return finite_number(0.0, true); }
+inline CLI::Validator finite_positive() {
+  return finite_number([](double v) { return v > 0; }, "above 0");
+}
+inline CLI::Validator finite_non_negative() {
+  return finite_number([](double v) { return v >= 0; }, "at least 0");
+}
+inline CLI::Validator finite_between(double lo, double hi) {
+  char bound[64];
+  std::snprintf(bound, sizeof bound, "in [%g, %g]", lo, hi);
+  return finite_number([lo, hi](double v) { return v >= lo && v <= hi; }, bound);
+}
 
 // A folder name that is not empty.
 inline CLI::Validator non_empty_folder() {
