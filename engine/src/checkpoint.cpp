@@ -166,7 +166,7 @@ void require_index_times(const std::vector<std::pair<double, std::string>>& pvd,
     const double t = pvd[e].first;
     if (!std::isfinite(t) || t < before || t > now)
       r.fail("index entry " + std::to_string(e) + " has time " + std::to_string(t) +
-             ", not finite and between the previous entry's and the checkpoint's");
+             "; index times are finite, in order and not after the checkpoint's");
     before = t;
   }
 }
