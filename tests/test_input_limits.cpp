@@ -85,6 +85,14 @@ TEST(NumericOptions, ARangeErrorPrintsItsBoundShort) {
   EXPECT_NE(r.output.find("must be a finite number above 0, not '-1'"), std::string::npos)
       << r.output;
   EXPECT_LT(r.output.size(), 200u) << r.output;  // not the largest double in 309 digits
+  for (const std::string& count :
+       {"run " + scene + " --threads -1", "study " + scene + " --sample 0",
+        "study " + scene + " --max-resubmits -1"}) {
+    const cli_runner::Result c = run_cli(count);
+    EXPECT_EQ(c.code, 64) << c.output;
+    EXPECT_NE(c.output.find("must be a whole number from "), std::string::npos) << c.output;
+    EXPECT_LT(c.output.size(), 200u) << c.output;
+  }
 }
 
 TEST(FolderOptions, AnEmptyFolderNameIsRefused) {

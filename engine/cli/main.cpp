@@ -426,7 +426,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)")
       ->check(cli::non_empty_folder());
   run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::whole_number_from(1));
   run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
   std::string backend = "cpu";
   run_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
@@ -443,7 +443,7 @@ int main(int argc, char** argv) {
       ->required()
       ->check(cli::non_empty_folder());
   resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::whole_number_from(1));
   resume_cmd->add_flag("-q,--quiet", quiet, "No progress output");
   resume_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
       ->check(CLI::IsMember({"cpu", "cuda"}));

@@ -1,13 +1,16 @@
 #pragma once
 // Checks of options beyond CLI11's own. Its PositiveNumber,
 // NonNegativeNumber and Range let "nan" through (every comparison with NaN
-// is false), and a NaN limit switches the limit off; and an empty folder
+// is false), and a NaN limit switches the limit off; the first two print
+// their upper bound, the largest double, in 309 digits; and an empty folder
 // name would fall back to the default folder unnoticed.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <string>
 
 namespace runout::cli {
@@ -36,6 +39,22 @@ inline CLI::Validator finite_between(double lo, double hi) {
   char bound[64];
   std::snprintf(bound, sizeof bound, "in [%g, %g]", lo, hi);
   return finite_number([lo, hi](double v) { return v >= lo && v <= hi; }, bound);
+}
+
+// A whole number from lo to INT_MAX, for the int options (counts).
+inline CLI::Validator whole_number_from(long lo) {
+  const std::string bound = "a whole number from " + std::to_string(lo) + " to " +
+                            std::to_string(std::numeric_limits<int>::max());
+  return CLI::Validator(
+      [lo, bound](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const long v = std::strtol(text.c_str(), &end, 10);
+        const bool whole = !text.empty() && end && *end == '\0' && errno == 0;
+        if (whole && v >= lo && v <= std::numeric_limits<int>::max()) return "";
+        return "must be " + bound + ", not '" + text + "'";
+      },
+      "INT");
 }
 
 // A folder name that is not empty.

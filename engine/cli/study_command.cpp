@@ -536,7 +536,8 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
   cmd->add_option("--vary", a.vary,
                   "KEY=DIST: draw the key from uniform(lo,hi), normal(mean,sd[,lo,hi]) or "
                   "lognormal(median,sigma[,lo,hi]) (repeatable; with --sample)");
-  cmd->add_option("--sample", a.samples, "Samples of the --vary keys")->check(CLI::PositiveNumber);
+  cmd->add_option("--sample", a.samples, "Samples of the --vary keys")
+      ->check(cli::whole_number_from(1));
   cmd->add_option("--seed", a.seed, "Seed of the samples");
   cmd->add_option("--design", a.design, "lhs (Latin hypercube) or mc (Monte Carlo)")
       ->check(CLI::IsMember({"lhs", "mc"}));
@@ -544,7 +545,7 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
       ->check(CLI::IsMember({"local", "slurm"}));
   cmd->add_option("--max-resubmits", a.max_resubmits,
                   "Slurm: submit unfinished elements again at most this many times")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::whole_number_from(0));
   cmd->add_option("--sbatch-arg", a.sbatch_args,
                   "Slurm: an argument for sbatch, e.g. --sbatch-arg=--partition=long (repeatable)");
   cmd->add_option("--collect", a.collect,
@@ -552,8 +553,9 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
   cmd->add_option("-o,--out", a.out, "Study folder (default out/study/<scene name>)")
       ->check(cli::non_empty_folder());
   cmd->add_option("-j,--jobs", a.jobs, "Runs at once (default: cores / threads)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("-t,--threads", a.threads, "OpenMP threads per run")->check(CLI::PositiveNumber);
+      ->check(cli::whole_number_from(1));
+  cmd->add_option("-t,--threads", a.threads, "OpenMP threads per run")
+      ->check(cli::whole_number_from(1));
 }
 
 int run_study(const StudyArgs& given) {
