@@ -92,13 +92,16 @@ std::vector<std::string> temporaries(const fs::path& dir) {
   return found;
 }
 
-// Every file of a folder and its bytes, but the lock file, which each
-// process that takes the lock writes its pid into.
+// Every file of a folder and its bytes (a link: where it points), but the
+// lock file, which each process that takes the lock writes its pid into.
 std::map<std::string, std::string> folder_bytes(const fs::path& dir) {
   std::map<std::string, std::string> files;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename() != kOutputLockFile)
-      files[e.path().filename().string()] = read_file(e.path());
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name == kOutputLockFile) continue;
+    files[name] = e.is_symlink() ? "-> " + fs::read_symlink(e.path()).string()
+                                 : read_file(e.path());
+  }
   return files;
 }
 
@@ -277,6 +280,12 @@ TEST_F(HostileCheckpoint, ADamagedKeptFrameRefusesTheResumeAndChangesNothing) {
   expect_refused_unchanged("frame_00002.vtu is not the frame the checkpoint kept");
   const cli_runner::Result verified = run_cli("verify " + out().string());
   EXPECT_EQ(verified.code, 65) << verified.output;  // the damage is still reported
+}
+
+TEST_F(HostileCheckpoint, AKeptFrameThatIsADeviceIsRefusedUnread) {
+  fs::remove(out() / "frame_00001.vtu");
+  fs::create_symlink("/dev/zero", out() / "frame_00001.vtu");
+  expect_refused_unchanged("frame_00001.vtu is not the frame the checkpoint kept");
 }
 
 TEST_F(HostileCheckpoint, AShortHistoryRefusesTheResumeAndDeletesNothing) {

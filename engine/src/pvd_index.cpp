@@ -63,9 +63,13 @@ FrameSum sum_of(const std::string& bytes) {
   std::snprintf(crc, sizeof crc, "%08lx", crc_of(bytes));
   return {bytes.size(), crc};
 }
-// A file that cannot be read (an index given a frame that is not there)
-// is recorded as such, for verify to report, rather than failing the run.
+// A file that cannot be read (an index given a frame that is not there, or
+// not a regular file) is recorded as such, for verify to report, rather
+// than failing the run.
 FrameSum frame_sum(const std::string& folder, const std::string& file) {
+  // Only a regular file is a frame: a device behind the name would never end.
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(in_folder(folder, file), ignored)) return {0, "unreadable"};
   std::ifstream in(in_folder(folder, file), std::ios::binary);
   if (!in) return {0, "unreadable"};
   return sum_of(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
