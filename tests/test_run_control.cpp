@@ -298,6 +298,12 @@ TEST_F(HostileCheckpoint, AShortHistoryRefusesTheResumeAndDeletesNothing) {
   expect_refused_unchanged("holds 11 rows, fewer than the 31 its checkpoint counts");
 }
 
+TEST_F(HostileCheckpoint, AHistoryThatIsADeviceIsRefusedUnread) {
+  fs::remove(out() / "history.csv");
+  fs::create_symlink("/dev/zero", out() / "history.csv");
+  expect_refused_unchanged("history.csv' is missing or not a regular file");
+}
+
 TEST_F(HostileCheckpoint, AnotherRunsCheckpointWithItsSceneIsRefused) {
   // The same length of run, so that only its frames tell it apart.
   std::string steeper = long_scene("2.0");

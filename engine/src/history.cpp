@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -74,6 +75,10 @@ void HistoryWriter::sync() {
 }
 
 std::string first_history_rows(const std::string& path, long rows) {
+  // A device behind the name (/dev/zero) would be one endless line.
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(path, ignored))
+    throw std::runtime_error("'" + path + "' is missing or not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read '" + path + "'");
   std::string kept, line;
