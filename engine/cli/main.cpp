@@ -65,14 +65,13 @@ enum Exit {
 void on_stop_signal(int signal) { request_stop(signal); }
 
 // The first SIGINT, SIGTERM or SIGHUP asks the run to stop at the next step
-// and checkpoint; SA_RESETHAND lets a second one kill it at once. A study
-// takes them without SA_RESTART: its wait for a child returns at once to
-// pass the signal on.
-void stop_on_signals(bool restart) {
+// and checkpoint (a study: passes it on to its runs); SA_RESETHAND lets a
+// second one kill it at once.
+void stop_on_signals() {
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND | (restart ? SA_RESTART : 0);
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
   for (const int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &action, nullptr);
 }
 
@@ -477,8 +476,7 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   if (threads > 0) omp_set_num_threads(threads);
-  if (*run_cmd || *resume_cmd) stop_on_signals(true);
-  if (*study_cmd) stop_on_signals(false);
+  if (*run_cmd || *resume_cmd || *study_cmd) stop_on_signals();
   try {
     if (*run_cmd)
       return run(load(run_args), source_of(run_args), out, backend, quiet, checkpoint_every,

@@ -1,10 +1,6 @@
 #include "study_command.hpp"
 
-#include <signal.h>
-#include <sys/wait.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -273,14 +269,8 @@ void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>&
                std::vector<std::string>& why) {
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0, done = 0;
-  bool passed_on = false;
-  // A stop request (SIGINT, SIGTERM, SIGHUP to the study) goes to every
-  // running child once: each stops at a step with a checkpoint to resume.
-  const auto pass_on_stop = [&] {
-    if (passed_on || !stop_requested()) return;
-    passed_on = true;
-    for (const auto& [pid, k] : running) ::kill(pid, stop_requested());
-  };
+  // After a stop request no run starts; the running ones get the signal
+  // (wait_passing_stop) and stop at a step with a checkpoint to resume.
   const auto launch_more = [&] {
     for (; !stop_requested() && next < todo.size() && static_cast<int>(running.size()) < jobs;
          ++next) {
@@ -292,11 +282,12 @@ void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>&
       running[pid] = todo[next];
     }
   };
+  bool passed_on = false;
   for (launch_more(); !running.empty(); launch_more()) {
+    std::vector<pid_t> pids;
+    for (const auto& entry : running) pids.push_back(entry.first);
     int status = 0;
-    pass_on_stop();
-    const pid_t pid = waitpid(-1, &status, 0);
-    if (pid < 0 && errno == EINTR) continue;  // a signal: passed on at the loop's top
+    const pid_t pid = wait_passing_stop(pids, passed_on, status);
     if (pid < 0) throw std::runtime_error("lost the study's runs: waitpid failed");
     const auto it = running.find(pid);
     if (it == running.end()) continue;
