@@ -92,9 +92,13 @@ std::string frame_record(const std::string& folder, const std::string& file) {
   return file + " " + std::to_string(sum.size) + " " + sum.crc;
 }
 
-PvdIndex::PvdIndex(std::string path, Entries entries)
-    : path_(std::move(path)), frames_(std::move(entries)) {
-  for (const auto& entry : frames_) manifest_.push_back(frame_record(folder_of(path_), entry.second));
+PvdIndex::PvdIndex(std::string path, Entries entries, std::vector<std::string> records)
+    : path_(std::move(path)), frames_(std::move(entries)), manifest_(std::move(records)) {
+  if (manifest_.size() != frames_.size()) {
+    manifest_.clear();
+    for (const auto& entry : frames_)
+      manifest_.push_back(frame_record(folder_of(path_), entry.second));
+  }
   if (!frames_.empty()) write();
 }
 

@@ -378,7 +378,11 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
   RunSummary summary;
   summary.particles = particles().size();
   summary.pvd_path = (dir / (scene.name + ".pvd")).string();
-  PvdIndex pvd(summary.pvd_path, resumed ? resumed->pvd : PvdIndex::Entries{});
+  // A resume's kept frames were checked against their records
+  // (require_kept_frames): the index takes the records, without reading the
+  // frames again.
+  PvdIndex pvd(summary.pvd_path, resumed ? resumed->pvd : PvdIndex::Entries{},
+               resumed ? resumed->frame_records : std::vector<std::string>{});
   HistoryWriter history((dir / "history.csv").string(), resumed != nullptr);
   FrameInfo info{0.0, spacing, base_polyline(scene), {}};
   for (const MaterialParams& m : sim.materials()) info.strengths.push_back(m.strength);

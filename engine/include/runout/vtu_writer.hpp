@@ -39,8 +39,12 @@ void write_particles_vtu(const std::string& path, const Particles& particles,
 class PvdIndex {
  public:
   using Entries = std::vector<std::pair<double, std::string>>;  // time, file
-  // With entries (a resumed run's), the index is written at once.
-  explicit PvdIndex(std::string path, Entries entries = {});
+  // With entries (a resumed run's), the index is written at once, with
+  // `records` as their manifest lines where there is one per entry (a
+  // resume has just checked them against the files), else each frame's
+  // read from disk.
+  explicit PvdIndex(std::string path, Entries entries = {},
+                    std::vector<std::string> records = {});
   void add(double time, const std::string& relative_file);
   const std::string& path() const { return path_; }
   const Entries& entries() const { return frames_; }
