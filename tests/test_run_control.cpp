@@ -29,6 +29,7 @@
 #include <map>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "cli_runner.hpp"
@@ -352,12 +353,19 @@ TEST(OutputLock, ALinkedLockFileIsNotWrittenThrough) {
   ScratchFolder folder;
   const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
   const std::string target = folder.write("precious.txt", "not a lock\n");
-  fs::create_directories(folder.path() / "out");
-  fs::create_symlink(target, folder.path() / "out" / kOutputLockFile);
-  const cli_runner::Result r = run_cli("run " + scene + " -q -o " + (folder.path() / "out").string());
-  EXPECT_EQ(r.code, 73) << r.output;
-  EXPECT_NE(r.output.find(".runout.lock is a symbolic link"), std::string::npos) << r.output;
-  EXPECT_EQ(read_file(target), "not a lock\n");
+  const fs::path out = folder.path() / "out", lock = out / kOutputLockFile;
+  fs::create_directories(out);
+  const std::pair<std::function<void()>, std::string> links[] = {
+      {[&] { fs::create_symlink(target, lock); }, ".runout.lock is a symbolic link"},
+      {[&] { fs::create_hard_link(target, lock); }, "is not a regular file of its own"}};
+  for (const auto& [link, message] : links) {
+    fs::remove(lock);
+    link();
+    const cli_runner::Result r = run_cli("run " + scene + " -q -o " + out.string());
+    EXPECT_EQ(r.code, 73) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    EXPECT_EQ(read_file(target), "not a lock\n");
+  }
 }
 
 // A study of one long run: a second study into its folder is refused, and
