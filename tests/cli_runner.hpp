@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace runout::cli_runner {
 
@@ -51,6 +53,18 @@ class CoarseRun {
  private:
   std::filesystem::path dir_;
 };
+
+// The scene text with each `from` replaced by its `to`; a `from` the text
+// lacks fails the test.
+inline std::string edited(std::string scene,
+                          const std::vector<std::pair<std::string, std::string>>& edits) {
+  for (const auto& [from, to] : edits) {
+    const auto at = scene.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) scene.replace(at, from.size(), to);
+  }
+  return scene;
+}
 
 // An elastic block on a 10-degree slope, no [base]: a fraction of a second.
 inline const char* const kSmallScene = R"(

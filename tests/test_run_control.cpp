@@ -6,7 +6,14 @@
 // it byte for byte; a new run clears a killed run's temporaries; resume
 // refuses another run's checkpoint, a device or an absurd stated size before
 // reading it, and indices out of the scene's range; the at-rest stop comes
-// between output rows.
+// between output rows. A resume whose folder does not go with its
+// checkpoint (a kept frame changed, history.csv cut short, another run's
+// frames) exits 79 with the folder as it was; a checkpoint forged with a
+// valid hash (no particles, extra index entries, a NaN time) is refused;
+// the lock file is never written through a link. A study holds its folder
+// alone, passes a stop signal on to its runs, and refuses a matrix beyond
+// its bound.
+#include <errno.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -16,10 +23,13 @@
 #include <chrono>
 #include <climits>
 #include <cstdint>
+#include <cmath>
 #include <functional>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "cli_runner.hpp"
@@ -81,6 +91,19 @@ std::vector<std::string> temporaries(const fs::path& dir) {
     if (e.path().filename().string().find(".tmp.") != std::string::npos)
       found.push_back(e.path().filename().string());
   return found;
+}
+
+// Every file of a folder and its bytes (a link: where it points), but the
+// lock file, which each process that takes the lock writes its pid into.
+std::map<std::string, std::string> folder_bytes(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name == kOutputLockFile) continue;
+    files[name] = e.is_symlink() ? "-> " + fs::read_symlink(e.path()).string()
+                                 : read_file(e.path());
+  }
+  return files;
 }
 
 int frame_files(const fs::path& dir) {
@@ -177,6 +200,15 @@ class HostileCheckpoint : public ::testing::Test {
     change(cp);
     write_checkpoint(checkpoint().string(), cp.state, cp.particles);
   }
+  // A resume refused with exit 79 and `message`, every file as it was.
+  void expect_refused_unchanged(const std::string& message) const {
+    const auto before = folder_bytes(out());
+    const cli_runner::Result r = run_cli("resume -q " + out().string());
+    EXPECT_EQ(r.code, 79) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the folder is left as it was"), std::string::npos) << r.output;
+    EXPECT_TRUE(folder_bytes(out()) == before) << "the refused resume changed the folder";
+  }
   ScratchFolder folder_;
   std::string scene_;
 };
@@ -239,6 +271,146 @@ TEST_F(HostileCheckpoint, AnIndexEntryOutOfTheFolderIsRefused) {
   const cli_runner::Result r = run_cli("resume -q " + out().string());
   EXPECT_EQ(r.code, 65) << r.output;
   EXPECT_NE(r.output.find("index entry 1 is not frame 1"), std::string::npos) << r.output;
+}
+
+// The run's last checkpoint is at t = 1.5 s (row 30): it keeps frames 0
+// to 3 and 31 history rows; frame 4 and the rows after it are redone.
+TEST_F(HostileCheckpoint, ADamagedKeptFrameRefusesTheResumeAndChangesNothing) {
+  const std::string frame = read_file(out() / "frame_00002.vtu");
+  folder_.write("out/frame_00002.vtu", frame.substr(0, frame.size() - 100));
+  expect_refused_unchanged("frame_00002.vtu is not the frame the checkpoint kept");
+  const cli_runner::Result verified = run_cli("verify " + out().string());
+  EXPECT_EQ(verified.code, 65) << verified.output;  // the damage is still reported
+}
+
+TEST_F(HostileCheckpoint, AKeptFrameThatIsADeviceIsRefusedUnread) {
+  fs::remove(out() / "frame_00001.vtu");
+  fs::create_symlink("/dev/zero", out() / "frame_00001.vtu");
+  expect_refused_unchanged("frame_00001.vtu is not the frame the checkpoint kept");
+}
+
+TEST_F(HostileCheckpoint, AShortHistoryRefusesTheResumeAndDeletesNothing) {
+  const std::string history = read_file(out() / "history.csv");
+  std::size_t end = 0;
+  for (int line = 0; line < 12; ++line) end = history.find('\n', end) + 1;
+  folder_.write("out/history.csv", history.substr(0, end));  // the header and 11 rows
+  ASSERT_TRUE(fs::exists(out() / "frame_00004.vtu"));  // a frame after the checkpoint
+  ASSERT_TRUE(fs::exists(out() / "summary.json"));
+  expect_refused_unchanged("holds 11 rows, fewer than the 31 its checkpoint counts");
+}
+
+TEST_F(HostileCheckpoint, AHistoryThatIsADeviceIsRefusedUnread) {
+  fs::remove(out() / "history.csv");
+  fs::create_symlink("/dev/zero", out() / "history.csv");
+  expect_refused_unchanged("history.csv' is missing or not a regular file");
+}
+
+TEST_F(HostileCheckpoint, AnotherRunsCheckpointWithItsSceneIsRefused) {
+  // The same length of run, so that only its frames tell it apart.
+  std::string steeper = long_scene("2.0");
+  steeper.replace(steeper.find("slope_angle = 10.0"), 18, "slope_angle = 20.0");
+  const std::string other = folder_.write("steeper.toml", steeper);
+  const fs::path elsewhere = folder_.path() / "elsewhere";
+  ASSERT_EQ(run_cli("run " + other + " -q -t 1 --checkpoint-every 0.5 -o " + elsewhere.string())
+                .code,
+            0);
+  for (const char* file : {kCheckpointFile, "scene.resolved.toml"})
+    fs::copy_file(elsewhere / file, out() / file, fs::copy_options::overwrite_existing);
+  expect_refused_unchanged("frame_00001.vtu is not the frame the checkpoint kept");
+}
+
+TEST_F(HostileCheckpoint, NoParticlesAreRefused) {
+  write_modified([](Checkpoint& cp) { cp.particles = Particles{}; });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("no particles"), std::string::npos) << r.output;
+}
+
+TEST_F(HostileCheckpoint, ExtraIndexEntriesAreRefused) {
+  write_modified([](Checkpoint& cp) {
+    ScheduleState& k = cp.state.schedule;
+    for (const char* file : {"frame_00004.vtu", "frame_00005.vtu"}) {
+      k.pvd.emplace_back(k.pvd.back().first, file);
+      k.frame_records.push_back(std::string(file) + " 0 unreadable");
+    }
+    k.frames += 2;
+  });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("it counts 6 frames, its history row 30 gives 4"), std::string::npos)
+      << r.output;
+}
+
+TEST_F(HostileCheckpoint, ANaNIndexTimeIsRefused) {
+  write_modified([](Checkpoint& cp) { cp.state.schedule.pvd[1].first = std::nan(""); });
+  const cli_runner::Result r = run_cli("resume -q " + out().string());
+  EXPECT_EQ(r.code, 65) << r.output;
+  EXPECT_NE(r.output.find("index entry 1 has time nan"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(out() / "small.pvd").find("nan"), std::string::npos);
+}
+
+TEST(OutputLock, ALinkedLockFileIsNotWrittenThrough) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
+  const std::string target = folder.write("precious.txt", "not a lock\n");
+  const fs::path out = folder.path() / "out", lock = out / kOutputLockFile;
+  fs::create_directories(out);
+  const std::pair<std::function<void()>, std::string> links[] = {
+      {[&] { fs::create_symlink(target, lock); }, ".runout.lock is a symbolic link"},
+      {[&] { fs::create_hard_link(target, lock); }, "is not a regular file of its own"}};
+  for (const auto& [link, message] : links) {
+    fs::remove(lock);
+    link();
+    const cli_runner::Result r = run_cli("run " + scene + " -q -o " + out.string());
+    EXPECT_EQ(r.code, 73) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    EXPECT_EQ(read_file(target), "not a lock\n");
+  }
+}
+
+// A study of one long run: a second study into its folder is refused, and
+// SIGTERM to the study stops its child at a step with a checkpoint.
+TEST(Study, OneStudyPerFolderAndItsSignalStopsItsRuns) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("long.toml", long_scene("60.0"));
+  const fs::path out = folder.path() / "study";
+  const std::string args = " --cells 0.5 --ppc 1 -j 1 -t 1 --out " + out.string();
+  const pid_t study = start({"study", scene, "--cells", "0.5", "--ppc", "1", "-j", "1", "-t", "1",
+                             "--out", out.string()},
+                            folder.path() / "study.log");
+  const fs::path run = out / "runs" / "mpm_cpu_gimp_h0.5_ppc1";
+  ASSERT_TRUE(wait_for_file(run / "frame_00001.vtu")) << read_file(folder.path() / "study.log");
+
+  const cli_runner::Result second = run_cli("study " + scene + args);
+  EXPECT_EQ(second.code, 75) << second.output;
+  EXPECT_NE(second.output.find("is in use by another runout (pid " + std::to_string(study)),
+            std::string::npos)
+      << second.output;
+
+  const pid_t child = std::stoi(read_file(run / kOutputLockFile));
+  ::kill(study, SIGTERM);
+  EXPECT_EQ(wait_for(study), 128 + SIGTERM) << read_file(folder.path() / "study.log");
+  EXPECT_TRUE(::kill(child, 0) != 0 && errno == ESRCH) << "the study's run goes on";
+  EXPECT_TRUE(fs::exists(run / kCheckpointFile)) << read_file(run / "run.log");
+}
+
+TEST(Study, AStudyBeyondItsBoundIsRefusedBeforeItStarts) {
+  ScratchFolder folder;
+  const std::string scene = folder.write("small.toml", cli_runner::kSmallScene);
+  const std::string out = " --out " + (folder.path() / "study").string();
+  const cli_runner::Result samples = run_cli(
+      "study " + scene + " --vary 'material.clay.density=uniform(500,700)' --sample 1000000" + out);
+  EXPECT_EQ(samples.code, 65) << samples.output;
+  EXPECT_NE(samples.output.find("--sample: 1000000 runs, more than a study holds (10000)"),
+            std::string::npos)
+      << samples.output;
+  const cli_runner::Result matrix = run_cli(
+      "study " + scene + " --vary 'material.clay.density=uniform(500,700)' --sample 5000" +
+      " --cells 1,0.5,0.25" + out);
+  EXPECT_EQ(matrix.code, 65) << matrix.output;
+  EXPECT_NE(matrix.output.find("15000 runs, more than a study holds"), std::string::npos)
+      << matrix.output;
+  EXPECT_FALSE(fs::exists(folder.path() / "study"));
 }
 
 TEST(AtRest, TheStopComesBetweenOutputRows) {

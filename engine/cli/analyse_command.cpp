@@ -5,6 +5,7 @@
 #include <iostream>
 #include <vector>
 
+#include "option_checks.hpp"
 #include "runout/analysis/analysis_files.hpp"
 #include "runout/analysis/run_analysis.hpp"
 
@@ -23,7 +24,8 @@ void add_analyse_command(CLI::App& app, AnalyseArgs& args, CLI::App*& command) {
                    "Width of the profile bins along the base, in particle spacings (the "
                    "Runout Morphology filter's Bin Width In Spacings)")
       ->capture_default_str()
-      ->check(CLI::Range(analysis::kMinProfileBinSpacings, analysis::kMaxProfileBinSpacings));
+      ->check(cli::finite_between(analysis::kMinProfileBinSpacings,
+                                  analysis::kMaxProfileBinSpacings));
 }
 
 int run_analyse(const AnalyseArgs& args) {

@@ -10,9 +10,17 @@
 namespace runout {
 
 // fork + exec of args[0] (searched on PATH when it has no '/'), its stdout
-// (and stderr when with_stderr) into `out`. The pid, or -1 when fork fails.
+// (and stderr when with_stderr) into `out`, in a process group of its own.
+// The pid, or -1 when fork fails.
 pid_t spawn(const std::vector<std::string>& args, const std::filesystem::path& out,
             bool with_stderr);
+
+// Waits for any child of this process to end and returns its pid, with its
+// waitpid status in `status`; -1 when there is none. It polls, so that a
+// stop request (run_control.hpp: SIGINT, SIGTERM, SIGHUP) is seen at once
+// however it falls, and passes that signal on to each of `running` once
+// (`passed_on` says it has been).
+pid_t wait_passing_stop(const std::vector<pid_t>& running, bool& passed_on, int& status);
 
 // The exit code of a child waitpid reported as `status`: 128 + the signal
 // for one a signal ended, as a shell reports it.

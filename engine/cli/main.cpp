@@ -3,7 +3,9 @@
 // (frames before it are kept), 69 the backend asked for cannot run here, 73
 // the output cannot be written, 75 another runout writes into the output
 // folder. `resume`: 66 no checkpoint in the folder, 65 one that is corrupt,
-// of another version or of another run. A run stopped by SIGINT, SIGTERM or
+// of another version or of another run, 79 a folder that does not go with
+// its checkpoint (a kept frame changed, history.csv too short), left as it
+// was. A run stopped by SIGINT, SIGTERM or
 // SIGHUP exits 128 + the signal's number (130, 143, 129), as a shell
 // reports a process the signal killed.
 #include <omp.h>
@@ -16,15 +18,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <iostream>
 #include <optional>
 
 #include "analyse_command.hpp"
 #include "report_command.hpp"
 #include "budget_check.hpp"
+#include "option_checks.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
 #include "thread_count.hpp"
@@ -58,13 +59,15 @@ enum Exit {
   kBlowUp = 70,
   kCantCreate = 73,
   kFolderBusy = 75,   // EX_TEMPFAIL: it may work once the other run is done
+  kResumeRefused = 79,  // past sysexits' range: the folder does not go with its checkpoint
   kSignalBase = 128
 };
 
 void on_stop_signal(int signal) { request_stop(signal); }
 
 // The first SIGINT, SIGTERM or SIGHUP asks the run to stop at the next step
-// and checkpoint; SA_RESETHAND lets a second one kill it at once.
+// and checkpoint (a study: passes it on to its runs); SA_RESETHAND lets a
+// second one kill it at once.
 void stop_on_signals() {
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
@@ -107,8 +110,7 @@ void add_scene_args(CLI::App* cmd, SceneArgs& a) {
 // The scene's text, for the line of a key in a refusal after the parse.
 SceneSource source_of(const SceneArgs& a) {
   if (a.path.empty()) return {"default.toml", std::string(default_scene_toml())};
-  std::ifstream in(a.path, std::ios::binary);
-  return {a.path, std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>())};
+  return {a.path, read_scene_text(a.path)};
 }
 
 Scene load(const SceneArgs& a) {
@@ -142,11 +144,11 @@ void add_limit_args(CLI::App* cmd, LimitArgs& a) {
                   "Refuse a run that needs more steps than this (estimated from the initial "
                   "Courant step)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_positive());
   cmd->add_option("--max-output", a.max_output_gib,
                   "Refuse a run whose frames, uncompressed, would exceed this many GiB")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_positive());
 }
 
 // The limits; a run is bounded by the free disk of its output folder too.
@@ -159,6 +161,7 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
   if (free && *free < limits.max_output_bytes) {
     limits.max_output_bytes = *free;
     limits.output_limit_is = "the space free on the disk of " + *out_dir;
+    limits.output_remedy = "free space on that disk, or write to another with --out";
   }
   return limits;
 }
@@ -167,7 +170,7 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
 constexpr double kWallEstimateSeconds = 0.1;
 
 int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args) {
-  require_memory(s, s.method);  // the more basic refusal comes first
+  require_memory(s, s.method, source);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, nullptr), source);
   const MemoryEstimate memory = estimate_memory(s, s.method);
   // The threads a run of the scene would use, for the wall-time estimate.
@@ -260,15 +263,15 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
     write_summary(ended, opt, depth_averaged);
   };
   RunSummary r;
-  // An earlier run's summary is not this one's: a run killed before its end
-  // leaves none.
-  std::error_code ignored;
-  std::filesystem::remove(std::filesystem::path(opt.out_dir) / kSummaryFile, ignored);
   try {
     r = go(with_progress);
   } catch (const SceneError&) {
     progress.finish();
     throw;  // a scene the method cannot run: main's exit code for it
+  } catch (const ResumeRefused& e) {
+    progress.finish();
+    std::cerr << "runout: cannot resume: " << e.what() << "; the folder is left as it was\n";
+    return kResumeRefused;
   } catch (const CheckpointMissing& e) {
     progress.finish();
     std::cerr << "runout: cannot resume: " << e.what() << "\n";
@@ -330,7 +333,7 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
   RunOptions opt;
   opt.out_dir = out.empty() ? "out/" + s.name : out;
   opt.checkpoint_every = checkpoint_every;
-  require_memory(s, s.method);  // the more basic refusal comes first
+  require_memory(s, s.method, source);  // the more basic refusal comes first
   require_cost(s, s.method, limits_for(limit_args, &opt.out_dir), source);
   if (default_threads) {
     cli::use_default_threads(estimate_memory(s, s.method).items);
@@ -420,9 +423,10 @@ int main(int argc, char** argv) {
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its frames and history");
   add_scene_args(run_cmd, run_args);
   add_limit_args(run_cmd, run_limits);
-  run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)");
+  run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)")
+      ->check(cli::non_empty_folder());
   run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::whole_number_from(1));
   run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
   std::string backend = "cpu";
   run_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
@@ -431,13 +435,15 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--checkpoint-every", checkpoint_every,
                       "Write checkpoint.bin every SECONDS of simulated time (rounded to "
                       "history rows), for `runout resume`")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_positive());
   std::string resume_dir;
   CLI::App* resume_cmd = app.add_subcommand(
       "resume", "Continue a run from the checkpoint.bin in its output folder");
-  resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")->required();
+  resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")
+      ->required()
+      ->check(cli::non_empty_folder());
   resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::whole_number_from(1));
   resume_cmd->add_flag("-q,--quiet", quiet, "No progress output");
   resume_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
       ->check(CLI::IsMember({"cpu", "cuda"}));
@@ -449,7 +455,7 @@ int main(int argc, char** argv) {
   check_cmd->add_option("--budget", budget,
                         "Estimate the finest cell size per method that runs within SECONDS "
                         "here, and pick a method")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_positive());
   StudyArgs study_args;
   CLI::App* study_cmd = nullptr;
   add_study_command(app, study_args, study_cmd);
@@ -474,7 +480,7 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   if (threads > 0) omp_set_num_threads(threads);
-  if (*run_cmd || *resume_cmd) stop_on_signals();
+  if (*run_cmd || *resume_cmd || *study_cmd) stop_on_signals();
   try {
     if (*run_cmd)
       return run(load(run_args), source_of(run_args), out, backend, quiet, checkpoint_every,

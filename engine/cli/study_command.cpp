@@ -1,7 +1,5 @@
 #include "study_command.hpp"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,10 +15,12 @@
 #include "runout/atomic_file.hpp"
 #include "runout/device_info.hpp"
 #include "runout/memory_estimate.hpp"
+#include "runout/run_control.hpp"
 #include "runout/run_summary_file.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/study.hpp"
 #include "child_process.hpp"
+#include "option_checks.hpp"
 #include "study_parameters.hpp"
 #include "study_slurm.hpp"
 
@@ -145,6 +145,17 @@ Scene child_scene(const RunSpec& r) {
   return s;
 }
 
+// The rows expand_matrix gives, counted before any scene is parsed: an
+// MPM method runs each shape and ppc, the depth-averaged one once per cell.
+double matrix_runs(const StudyArgs& a, std::size_t points) {
+  double per_cell = 0;
+  for (const std::string& method : a.methods)
+    per_cell += method == "dam" ? 1.0 : double(a.shapes.size()) * double(a.ppc.size());
+  return double(points) * double(std::max<std::size_t>(1, a.domain_x_max.size())) *
+         double(std::max<std::size_t>(1, a.slope_angles.size())) * double(a.backends.size()) *
+         double(a.cells.size()) * per_cell;
+}
+
 std::vector<RunSpec> expand_matrix(const StudyArgs& a, std::size_t points,
                                    const std::vector<Variant>& variants) {
   std::string no_cuda;
@@ -258,8 +269,11 @@ void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>&
                std::vector<std::string>& why) {
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0, done = 0;
+  // After a stop request no run starts; the running ones get the signal
+  // (wait_passing_stop) and stop at a step with a checkpoint to resume.
   const auto launch_more = [&] {
-    for (; next < todo.size() && static_cast<int>(running.size()) < jobs; ++next) {
+    for (; !stop_requested() && next < todo.size() && static_cast<int>(running.size()) < jobs;
+         ++next) {
       const RunSpec& r = runs[todo[next]];
       const fs::path dir = runs_dir / r.id;
       fs::create_directories(dir);
@@ -268,9 +282,12 @@ void run_local(const std::vector<std::size_t>& todo, const std::vector<RunSpec>&
       running[pid] = todo[next];
     }
   };
+  bool passed_on = false;
   for (launch_more(); !running.empty(); launch_more()) {
+    std::vector<pid_t> pids;
+    for (const auto& entry : running) pids.push_back(entry.first);
     int status = 0;
-    const pid_t pid = waitpid(-1, &status, 0);
+    const pid_t pid = wait_passing_stop(pids, passed_on, status);
     if (pid < 0) throw std::runtime_error("lost the study's runs: waitpid failed");
     const auto it = running.find(pid);
     if (it == running.end()) continue;
@@ -481,7 +498,9 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
                            "here or on Slurm; one CSV row per run with its result, its cost and "
                            "its error against the finest run or the analytic answer");
   cmd->add_option("scene", a.scene, "Scene file (TOML); the built-in default scene if omitted");
-  cmd->add_option("--cells", a.cells, "Cell sizes h [m]")->delimiter(',')->check(CLI::PositiveNumber);
+  cmd->add_option("--cells", a.cells, "Cell sizes h [m]")
+      ->delimiter(',')
+      ->check(cli::finite_positive());
   cmd->add_option("--ppc", a.ppc, "Particles per cell per direction")->delimiter(',');
   cmd->add_option("--shape", a.shapes, "Shape functions: gimp, linear")
       ->delimiter(',')->check(CLI::IsMember({"gimp", "linear"}));
@@ -491,12 +510,13 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
       ->delimiter(',')->check(CLI::IsMember({"cpu", "cuda"}));
   cmd->add_option("--domain-x-max", a.domain_x_max,
                   "Far ends of the domain along x [m]: the same slide on longer paths")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(cli::finite_positive());
   cmd->add_option("--slope-angle", a.slope_angles,
                   "Slope angles [deg] of a planar-slope scene: the same slide on steeper bases")
       ->delimiter(',');
   cmd->add_option("--times", a.times, "Report the toe runout at these times [s]")
-      ->delimiter(',')->check(CLI::NonNegativeNumber);
+      ->delimiter(',')->check(cli::finite_non_negative());
   cmd->add_option("--end", a.end, "Override the end time [s]");
   cmd->add_option("--reference", a.reference,
                   "finest (the finest MPM run) or analytic-block (a rigid block on the base)")
@@ -507,7 +527,8 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
   cmd->add_option("--vary", a.vary,
                   "KEY=DIST: draw the key from uniform(lo,hi), normal(mean,sd[,lo,hi]) or "
                   "lognormal(median,sigma[,lo,hi]) (repeatable; with --sample)");
-  cmd->add_option("--sample", a.samples, "Samples of the --vary keys")->check(CLI::PositiveNumber);
+  cmd->add_option("--sample", a.samples, "Samples of the --vary keys")
+      ->check(cli::whole_number_from(1));
   cmd->add_option("--seed", a.seed, "Seed of the samples");
   cmd->add_option("--design", a.design, "lhs (Latin hypercube) or mc (Monte Carlo)")
       ->check(CLI::IsMember({"lhs", "mc"}));
@@ -515,15 +536,17 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
       ->check(CLI::IsMember({"local", "slurm"}));
   cmd->add_option("--max-resubmits", a.max_resubmits,
                   "Slurm: submit unfinished elements again at most this many times")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::whole_number_from(0));
   cmd->add_option("--sbatch-arg", a.sbatch_args,
                   "Slurm: an argument for sbatch, e.g. --sbatch-arg=--partition=long (repeatable)");
   cmd->add_option("--collect", a.collect,
                   "The CSV of the study in DIR from its runs' summaries; nothing is run");
-  cmd->add_option("-o,--out", a.out, "Study folder (default out/study/<scene name>)");
+  cmd->add_option("-o,--out", a.out, "Study folder (default out/study/<scene name>)")
+      ->check(cli::non_empty_folder());
   cmd->add_option("-j,--jobs", a.jobs, "Runs at once (default: cores / threads)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("-t,--threads", a.threads, "OpenMP threads per run")->check(CLI::PositiveNumber);
+      ->check(cli::whole_number_from(1));
+  cmd->add_option("-t,--threads", a.threads, "OpenMP threads per run")
+      ->check(cli::whole_number_from(1));
 }
 
 int run_study(const StudyArgs& given) {
@@ -536,12 +559,15 @@ int run_study(const StudyArgs& given) {
   }
   const SceneSource base = [&]() -> SceneSource {
     if (a.scene.empty()) return {"default.toml", std::string(default_scene_toml())};
-    load_scene_file(a.scene);  // the file's own refusals (missing, unreadable) first
-    std::ifstream in(a.scene, std::ios::binary);
-    return {a.scene, {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}};
+    std::string text = read_scene_text(a.scene);  // a regular file of a scene's size
+    parse_scene(text, a.scene);  // the scene's own refusals before the settings'
+    return {a.scene, std::move(text)};
   }();
   const StudyParameters params =
       study_parameters(a.settings, a.vary, a.samples, a.seed, a.design);
+  require_study_size(matrix_runs(a, params.points.size()),
+                     "the matrix (scene points x domains x slopes x methods x backends x cells "
+                     "x shapes x ppc)");
   // Every point's scene parsed before anything is written or run.
   std::vector<Variant> scenes = variants(a, base, params);
 
@@ -551,8 +577,20 @@ int run_study(const StudyArgs& given) {
   std::vector<RunSpec> runs;
   std::vector<std::string> why;
   std::vector<RunResult> results;
+  // One study per folder: a second would run the first's runs again and
+  // overwrite its study.csv.
   try {
     fs::create_directories(dir / "runs");
+    lock_output_folder(dir.string());
+  } catch (const OutputFolderBusy& e) {
+    std::cerr << "runout study: " << e.what() << "\n";
+    return 75;
+  } catch (const std::exception& e) {
+    std::cerr << "runout study: " << e.what() << "\n";
+    return 73;
+  }
+  const AdoptedFolderLock lock(dir.string());
+  try {
     if (a.collect.empty()) {
       std::string words;
       for (const std::string& w : args_words(a)) words += w + "\n";
@@ -638,6 +676,7 @@ int run_study(const StudyArgs& given) {
     if (results[k].status != "ok")
       std::printf("  %s: %s: %s\n", runs[k].id.c_str(), results[k].status.c_str(),
                   results[k].note.c_str());
+  if (const int signal = stop_requested()) return 128 + signal;  // as `runout run`
   return all_ran ? 0 : 70;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "runout/sampling.hpp"
 #include "runout/scene_parser.hpp"
@@ -24,6 +25,15 @@ std::string value_text(double v) {
 
 }  // namespace
 
+void require_study_size(double runs, const std::string& what) {
+  if (runs <= static_cast<double>(kMaxStudyRuns)) return;
+  char count[32];
+  std::snprintf(count, sizeof count, "%.0f", runs);
+  throw SceneError(what + ": " + count + " runs, more than a study holds (" +
+                       std::to_string(kMaxStudyRuns) + "); split it into smaller studies",
+                   0);
+}
+
 StudyParameters study_parameters(const std::vector<std::string>& set,
                                  const std::vector<std::string>& vary, int samples,
                                  std::uint64_t seed, const std::string& design) {
@@ -32,6 +42,7 @@ StudyParameters study_parameters(const std::vector<std::string>& set,
   for (const std::string& text : set) {  // the grid: each key's values crossed with the others'
     const auto [key, values] = parse_setting_list(text);
     add_key(p, "--set", key);
+    require_study_size(double(p.points.size()) * double(values.size()), "--set");
     std::vector<std::vector<SceneSetting>> crossed;
     for (const auto& point : p.points)
       for (const std::string& v : values) {
@@ -45,6 +56,7 @@ StudyParameters study_parameters(const std::vector<std::string>& set,
                                   : "--vary: give the number of samples with --sample N",
                      0);
   if (vary.empty()) return p;
+  require_study_size(double(p.points.size()) * samples, "--sample");
   std::vector<std::pair<std::string, sampling::Distribution>> dists;
   for (const std::string& text : vary) {
     const std::size_t eq = text.find('=');

@@ -1,8 +1,5 @@
 #include "study_slurm.hpp"
 
-#include <sys/wait.h>
-
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -11,6 +8,7 @@
 
 #include "child_process.hpp"
 #include "runout/atomic_file.hpp"
+#include "runout/run_control.hpp"
 
 namespace runout {
 namespace {
@@ -37,14 +35,18 @@ std::string array_spec(const std::vector<std::size_t>& indices) {
   return spec;
 }
 
-// sbatch with these arguments, its stdout into `out`; its exit status.
+// sbatch with these arguments, its stdout into `out`; its exit status. A
+// stop request to the study is passed on to it.
 int sbatch(const std::vector<std::string>& args, const fs::path& out) {
   const pid_t pid = spawn(args, out, false);
   if (pid < 0) throw std::runtime_error("cannot start sbatch: fork failed");
+  bool passed_on = false;
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw std::runtime_error("lost sbatch: waitpid failed");
-  return exit_code(status);
+  for (;;) {
+    const pid_t ended = wait_passing_stop({pid}, passed_on, status);
+    if (ended == pid) return exit_code(status);
+    if (ended < 0) throw std::runtime_error("lost sbatch: waitpid failed");
+  }
 }
 
 std::string read_text(const fs::path& path) {
@@ -81,7 +83,8 @@ int run_on_slurm(const fs::path& study_dir, const std::vector<SlurmElement>& ele
     std::vector<std::size_t> todo;
     for (std::size_t k = 0; k < elements.size(); ++k)
       if (!finished(k)) todo.push_back(k);
-    if (todo.empty() || submissions > request.max_resubmits) break;
+    // A stop request (a signal to the study) ends the submissions.
+    if (todo.empty() || submissions > request.max_resubmits || stop_requested()) break;
     std::vector<std::string> args{"sbatch", "--parsable", "--wait", "--array=" + array_spec(todo)};
     args.insert(args.end(), request.sbatch_args.begin(), request.sbatch_args.end());
     args.push_back(script);

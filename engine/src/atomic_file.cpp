@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -28,19 +29,6 @@ std::string temporary_name(const std::string& path) {
          std::to_string(::getpid()) + "." + std::to_string(counter++);
 }
 
-bool write_all(int fd, std::string_view contents) {
-  const char* p = contents.data();
-  std::size_t left = contents.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return false;
-    p += n;
-    left -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
 // The folder locks this process holds: descriptor and depth, by folder.
 struct HeldLock {
   int fd;
@@ -62,7 +50,41 @@ std::string holder_pid(int fd) {
   return pid.empty() ? "unknown" : pid;
 }
 
+// The lock file, opened without following a link (one planted there would
+// have the run overwrite its target) and refused unless it is a regular
+// file of one name: a hard link would be overwritten the same way.
+int open_lock_file(const std::string& path) {
+  const int fd =
+      ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+  if (fd < 0 && errno == ELOOP)
+    throw std::runtime_error("the lock file " + path +
+                             " is a symbolic link; runout does not write through it: remove it");
+  if (fd < 0)
+    throw std::runtime_error("cannot create the lock file " + path + ": " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_nlink != 1) {
+    ::close(fd);
+    throw std::runtime_error("the lock file " + path +
+                             " is not a regular file of its own (a device, a pipe, a hard link); "
+                             "remove it");
+  }
+  return fd;
+}
+
 }  // namespace
+
+bool write_all(int fd, std::string_view contents) {
+  const char* p = contents.data();
+  std::size_t left = contents.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return false;
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
 
 bool is_atomic_temporary(const std::string& name) {
   return !name.empty() && name[0] == '.' && name.find(".tmp.") != std::string::npos;
@@ -76,9 +98,7 @@ void lock_output_folder(const std::string& dir) {
     return;
   }
   const std::string path = (std::filesystem::path(dir) / kOutputLockFile).string();
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-  if (fd < 0)
-    throw std::runtime_error("cannot create the lock file " + path + ": " + std::strerror(errno));
+  const int fd = open_lock_file(path);
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
     const std::string pid = holder_pid(fd);

@@ -10,13 +10,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <optional>
 #include <type_traits>
 
 #include "runout/atomic_file.hpp"
 #include "runout/memory_estimate.hpp"
+#include "runout/scene_parser.hpp"
 
 namespace runout {
 namespace {
@@ -26,8 +25,7 @@ namespace {
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "checkpoints are little-endian");
 
 constexpr char kMagic[8] = {'R', 'U', 'N', 'O', 'U', 'T', 'C', 'K'};
-constexpr std::uint32_t kVersion = 3;  // 2: APIC affine velocity and F per particle;
-                                         // 3: rest_peak is the bulk speed squared
+constexpr std::uint32_t kVersion = 4;  // 4: each index entry with its frame's record
 // magic, version, payload size; the payload; then its checksum.
 constexpr std::size_t kHeaderBytes = sizeof kMagic + 4 + 8;
 constexpr std::size_t kChecksumBytes = 8;
@@ -103,7 +101,7 @@ class Reader {
 };
 
 // Bytes of one particle: the double arrays, body and material, id.
-constexpr std::size_t kParticleBytes = 16 * 8 + 2 * 4 + 8;
+constexpr std::size_t kParticleBytes = kParticleDoubles * 8 + 2 * 4 + 8;
 
 void put_particles(Writer& w, const Particles& P) {
   w.put<std::uint64_t>(P.size());
@@ -115,6 +113,8 @@ void put_particles(Writer& w, const Particles& P) {
 
 Particles get_particles(Reader& r) {
   const std::uint64_t n = r.get<std::uint64_t>();
+  // A run without particles has nothing to continue ("at rest" at once).
+  if (n == 0) r.fail("no particles");
   if (n > r.left() / kParticleBytes) r.fail("more particles than the file holds");
   Particles P;
   for (auto* a : P.double_arrays()) r.get_array(*a, n);
@@ -141,9 +141,11 @@ void put_state(Writer& w, const CheckpointState& s) {
   w.put<double>(k.rest_since);
   w.put<double>(k.initial_toe);
   w.put<std::uint64_t>(k.pvd.size());
-  for (const auto& [time, file] : k.pvd) {
-    w.put<double>(time);
-    w.put_text(file);
+  for (std::size_t e = 0; e < k.pvd.size(); ++e) {
+    w.put<double>(k.pvd[e].first);
+    w.put_text(k.pvd[e].second);
+    // No record: a frame a resume cannot vouch for, which it refuses.
+    w.put_text(e < k.frame_records.size() ? k.frame_records[e] : std::string());
   }
 }
 
@@ -153,6 +155,20 @@ bool frame_name_at(const std::string& name, std::size_t index) {
   char expected[32];
   std::snprintf(expected, sizeof expected, "frame_%05zu.vtu", index);
   return name == expected;
+}
+
+// Index times as a run writes them: finite, in order, none after the
+// checkpoint's own time (a NaN would reach the .pvd as timestep="nan").
+void require_index_times(const std::vector<std::pair<double, std::string>>& pvd, double now,
+                         const Reader& r) {
+  double before = 0.0;
+  for (std::size_t e = 0; e < pvd.size(); ++e) {
+    const double t = pvd[e].first;
+    if (!std::isfinite(t) || t < before || t > now)
+      r.fail("index entry " + std::to_string(e) + " has time " + std::to_string(t) +
+             "; index times are finite, in order and not after the checkpoint's");
+    before = t;
+  }
 }
 
 CheckpointState get_state(Reader& r) {
@@ -173,11 +189,12 @@ CheckpointState get_state(Reader& r) {
   k.rest_since = r.get<double>();
   k.initial_toe = r.get<double>();
   const std::uint64_t entries = r.get<std::uint64_t>();
-  // Each entry holds at least a time and a text length.
-  if (entries > r.left() / 16) r.fail("more index entries than the file holds");
+  // Each entry holds at least a time and two text lengths.
+  if (entries > r.left() / 24) r.fail("more index entries than the file holds");
   for (std::uint64_t e = 0; e < entries; ++e) {
     const double time = r.get<double>();
     k.pvd.emplace_back(time, r.get_text());
+    k.frame_records.push_back(r.get_text());
   }
   // checkpoint_rows 0: a run without --checkpoint-every, stopped by a signal.
   if (k.row < 0 || k.checkpoint_rows < 0 || frames < 0 ||
@@ -186,6 +203,7 @@ CheckpointState get_state(Reader& r) {
   if (!std::isfinite(c.time) || c.time < 0 || !std::isfinite(c.last_dt) || c.last_dt < 0)
     r.fail("a time or time step that is negative or not finite");
   k.frames = static_cast<int>(frames);
+  require_index_times(k.pvd, c.time, r);
   // The index names the frames the folder holds: nothing else (a path out
   // of the folder) may come back into it.
   for (std::size_t e = 0; e < k.pvd.size(); ++e)
@@ -303,12 +321,13 @@ std::uint64_t scene_hash(std::string_view scene_toml) { return fnv1a(scene_toml)
 
 void require_same_scene(const CheckpointState& state, const std::string& resolved_path,
                         const std::string& source) {
-  std::ifstream in(resolved_path, std::ios::binary);
-  if (!in)
-    throw CheckpointError(source + ": the run folder has no " + resolved_path +
-                          " to check the checkpoint against");
-  const std::string resolved((std::istreambuf_iterator<char>(in)),
-                             std::istreambuf_iterator<char>());
+  std::string resolved;
+  try {
+    resolved = read_scene_text(resolved_path);
+  } catch (const SceneFileError& e) {
+    throw CheckpointError(source + ": the run folder has no readable " + resolved_path +
+                          " to check the checkpoint against (" + e.what() + ")");
+  }
   const std::uint64_t folder = scene_hash(resolved), own = scene_hash(state.scene_toml);
   if (folder != own)
     throw CheckpointError(source + ": the checkpoint belongs to another run: its scene (hash " +

@@ -245,30 +245,47 @@ std::string located(const std::string& key, const Scene& scene, const SceneSourc
 
 }  // namespace
 
+void require_memory(const Scene& scene, Method method, const SceneSource& source) {
+  try {
+    require_memory(scene, method);
+  } catch (const SceneError& e) {
+    // The refusals name their key first: "grid.cell_size: ...".
+    const std::string what = e.what();
+    const std::size_t colon = what.find(": ");
+    if (e.line() != 0 || colon == std::string::npos) throw;
+    int line = 0;
+    const std::string key = located(what.substr(0, colon), scene, source, line);
+    throw SceneError(key + what.substr(colon), line);
+  }
+}
+
 void require_cost(const Scene& scene, Method method, const CostLimits& limits,
                   const SceneSource& source) {
   const RunCost c = estimate_cost(scene, method);
   int line = 0;
   // The depth-averaged model steps with its own, much longer, time step.
-  if (method != Method::Dam && c.steps > limits.max_steps)
-    throw SceneError(located("time.end", scene, source, line) + ": the run needs at least " + number_text(c.steps) +
+  if (method != Method::Dam && c.steps > limits.max_steps) {
+    const std::string key = located("time.end", scene, source, line);
+    throw SceneError(key + ": the run needs at least " + number_text(c.steps) +
                          " steps (time.end = " + number_text(scene.time.end) +
                          " s over the initial time step of " + number_text(c.initial_dt) +
                          " s, from time.courant, grid.cell_size and the P-wave speed of "
                          "material \"" + c.stiffest + "\"), more than the limit of " +
                          number_text(limits.max_steps) + "; shorten time.end, raise "
                          "grid.cell_size, or raise the limit with " + limits.steps_option,
-                     0);
-  if (c.output_bytes > limits.max_output_bytes)
-    throw SceneError(located("time.output_interval", scene, source, line) +
-                         ": the run writes about " + number_text(c.frames) +
+                     line);
+  }
+  if (c.output_bytes > limits.max_output_bytes) {
+    const std::string key = located("time.output_interval", scene, source, line);
+    throw SceneError(key + ": the run writes about " + number_text(c.frames) +
                          " frames of " + number_text(estimate_memory(scene, method).items) +
                          (method == Method::Dam ? " elements" : " particles") + ", about " +
                          byte_text(c.output_bytes) + " uncompressed, more than " +
                          limits.output_limit_is + " of " + byte_text(limits.max_output_bytes) +
-                         "; raise time.output_interval or shorten time.end, or raise the "
-                         "limit with " + limits.output_option,
+                         "; raise time.output_interval or shorten time.end, or " +
+                         limits.output_remedy,
                      line);
+  }
 }
 
 std::optional<double> free_disk_bytes(const std::string& path) {

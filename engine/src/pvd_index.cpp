@@ -63,18 +63,16 @@ FrameSum sum_of(const std::string& bytes) {
   std::snprintf(crc, sizeof crc, "%08lx", crc_of(bytes));
   return {bytes.size(), crc};
 }
-// A file that cannot be read (an index given a frame that is not there)
-// is recorded as such, for verify to report, rather than failing the run.
+// A file that cannot be read (an index given a frame that is not there, or
+// not a regular file) is recorded as such, for verify to report, rather
+// than failing the run.
 FrameSum frame_sum(const std::string& folder, const std::string& file) {
+  // Only a regular file is a frame: a device behind the name would never end.
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(in_folder(folder, file), ignored)) return {0, "unreadable"};
   std::ifstream in(in_folder(folder, file), std::ios::binary);
   if (!in) return {0, "unreadable"};
   return sum_of(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
-}
-
-// "file size crc32".
-std::string manifest_line(const std::string& folder, const std::string& file) {
-  const FrameSum sum = frame_sum(folder, file);
-  return file + " " + std::to_string(sum.size) + " " + sum.crc;
 }
 
 // The value of attribute `key` in the element text `tag`, if it has one.
@@ -89,15 +87,24 @@ std::optional<std::string> attribute_of(const std::string& tag, const std::strin
 
 }  // namespace
 
-PvdIndex::PvdIndex(std::string path, Entries entries)
-    : path_(std::move(path)), frames_(std::move(entries)) {
-  for (const auto& entry : frames_) manifest_.push_back(manifest_line(folder_of(path_), entry.second));
+std::string frame_record(const std::string& folder, const std::string& file) {
+  const FrameSum sum = frame_sum(folder, file);
+  return file + " " + std::to_string(sum.size) + " " + sum.crc;
+}
+
+PvdIndex::PvdIndex(std::string path, Entries entries, std::vector<std::string> records)
+    : path_(std::move(path)), frames_(std::move(entries)), manifest_(std::move(records)) {
+  if (manifest_.size() != frames_.size()) {
+    manifest_.clear();
+    for (const auto& entry : frames_)
+      manifest_.push_back(frame_record(folder_of(path_), entry.second));
+  }
   if (!frames_.empty()) write();
 }
 
 void PvdIndex::add(double time, const std::string& relative_file) {
   frames_.emplace_back(time, relative_file);
-  manifest_.push_back(manifest_line(folder_of(path_), relative_file));
+  manifest_.push_back(frame_record(folder_of(path_), relative_file));
   write();
 }
 

@@ -21,6 +21,7 @@
 #include "runout/morphology.hpp"
 #include "runout/run.hpp"
 #include "runout/run_control.hpp"
+#include "runout/run_summary_file.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/simulation.hpp"
 #include "runout/thread_governor.hpp"
@@ -43,7 +44,8 @@ inline void clear_previous_output(const fs::path& dir) {
     const bool profile = name.rfind("profile_", 0) == 0 && ext == ".csv";
     if (ext == ".vtu" || ext == ".vtp" || ext == ".pvd" || ext == ".manifest" || profile ||
         name == "history.csv" ||
-        name == "scene.resolved.toml" || name == kCheckpointFile || is_atomic_temporary(name))
+        name == "scene.resolved.toml" || name == kCheckpointFile || name == kSummaryFile ||
+        is_atomic_temporary(name))
       fs::remove(entry.path());
   }
   // What `runout analyse` wrote of the old run's frames.
@@ -231,12 +233,49 @@ void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_poi
   if (options.on_finished) options.on_finished(summary);
 }
 
-// The folder of a run being resumed from its checkpoint, put back as it was
-// when the checkpoint was written: history rows, frames and profiles
-// written after it (a killed run may have written some) removed, the index
-// rewritten (by the caller's PvdIndex), and temporaries of writes the kill
-// interrupted deleted.
-inline void rewind_folder(const fs::path& dir, const ScheduleState& state) {
+// A checkpoint's frame count is the schedule's for its row: frame 0, then
+// one every kHistoryPerFrame rows (none is written at rest or at the end).
+inline void require_schedule(const ScheduleState& state, const std::string& source) {
+  const long expected = state.row / kHistoryPerFrame + 1;
+  if (state.frames != expected)
+    throw CheckpointError(source + ": it counts " + std::to_string(state.frames) +
+                          " frames, its history row " + std::to_string(state.row) +
+                          " gives " + std::to_string(expected));
+}
+
+// history.csv cut back to the checkpoint's rows, read before anything is
+// changed: a file too short refuses the resume instead of half doing it.
+inline std::string kept_history(const fs::path& dir, const ScheduleState& state) {
+  try {
+    return first_history_rows((dir / "history.csv").string(), state.row + 1);
+  } catch (const std::runtime_error& e) {
+    throw ResumeRefused(e.what());
+  }
+}
+
+// Throws ResumeRefused unless every frame the checkpoint keeps is the one it
+// recorded: a damaged frame would otherwise enter the new manifest as whole,
+// and another run's frames would be continued as this one's.
+inline void require_kept_frames(const fs::path& dir, const ScheduleState& state) {
+  for (std::size_t e = 0; e < state.pvd.size(); ++e) {
+    const std::string& file = state.pvd[e].second;
+    const std::string now = frame_record(dir.string(), file);
+    const std::string recorded = e < state.frame_records.size() ? state.frame_records[e] : "";
+    if (now != recorded)
+      throw ResumeRefused((dir / file).string() +
+                          " is not the frame the checkpoint kept (file, bytes, CRC-32): '" + now +
+                          "' now, '" + recorded + "' in the checkpoint");
+  }
+}
+
+// The folder of a run being resumed, put back as it was when the checkpoint
+// was written: history.csv to `history` (kept_history), frames and profiles
+// written after it removed (a killed run may have written some), the
+// temporaries of writes the kill interrupted and the summary of an ended
+// run deleted; the caller's PvdIndex rewrites the index.
+inline void rewind_folder(const fs::path& dir, const ScheduleState& state,
+                          const std::string& history) {
+  write_file_atomically((dir / "history.csv").string(), history);
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
     const std::string ext = entry.path().extension().string();
@@ -247,14 +286,16 @@ inline void rewind_folder(const fs::path& dir, const ScheduleState& state) {
     if ((numbered_file && frame >= state.frames) || is_atomic_temporary(name))
       fs::remove(entry.path());
   }
-  keep_history_rows((dir / "history.csv").string(), state.row + 1);
+  fs::remove(dir / kSummaryFile);
 }
 
 // The scene and state of a run to resume from the checkpoint in
 // options.out_dir, with the folder locked for this process (run_mpm
-// releases it) and rewound to the checkpoint. Throws CheckpointError (a
-// checkpoint of another run among them), OutputFolderBusy, or SceneError
-// for a stored scene this build does not read.
+// releases it) and rewound to the checkpoint. Everything is checked before
+// the folder changes: throws CheckpointError (a checkpoint of another run
+// among them), ResumeRefused (the folder does not go with it),
+// OutputFolderBusy, or SceneError for a stored scene this build does not
+// read.
 inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
   const fs::path dir(options.out_dir);
   const std::string path = (dir / kCheckpointFile).string();
@@ -266,7 +307,10 @@ inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
     require_same_scene(cp.state, (dir / "scene.resolved.toml").string(), path);
     scene = parse_scene(cp.state.scene_toml, path + " (its scene)");
     require_particles_fit(cp.particles, scene, path);
-    rewind_folder(dir, cp.state.schedule);
+    require_schedule(cp.state.schedule, path);
+    const std::string history = kept_history(dir, cp.state.schedule);
+    require_kept_frames(dir, cp.state.schedule);
+    rewind_folder(dir, cp.state.schedule, history);
     return cp;
   } catch (...) {
     unlock_output_folder(dir.string());
@@ -334,7 +378,11 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
   RunSummary summary;
   summary.particles = particles().size();
   summary.pvd_path = (dir / (scene.name + ".pvd")).string();
-  PvdIndex pvd(summary.pvd_path, resumed ? resumed->pvd : PvdIndex::Entries{});
+  // A resume's kept frames were checked against their records
+  // (require_kept_frames): the index takes the records, without reading the
+  // frames again.
+  PvdIndex pvd(summary.pvd_path, resumed ? resumed->pvd : PvdIndex::Entries{},
+               resumed ? resumed->frame_records : std::vector<std::string>{});
   HistoryWriter history((dir / "history.csv").string(), resumed != nullptr);
   FrameInfo info{0.0, spacing, base_polyline(scene), {}};
   for (const MaterialParams& m : sim.materials()) info.strengths.push_back(m.strength);
@@ -375,8 +423,8 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
   const std::string scene_toml = to_toml(scene);
   const auto checkpoint = [&](long k) {
     history.sync();  // the rows it counts reach the disk before it does
-    const ScheduleState state{k,           every,       summary.frames, pvd.entries(),
-                              rest.peak(), rest.since(), initial_toe};
+    const ScheduleState state{k,           every,        summary.frames, pvd.entries(),
+                              pvd.records(), rest.peak(), rest.since(),   initial_toe};
     write_checkpoint(checkpoint_path, CheckpointState{scene_toml, sim.counters(), state},
                      particles());
     summary.checkpoint_path = checkpoint_path;

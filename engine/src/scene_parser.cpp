@@ -1,11 +1,15 @@
 #include "runout/scene_parser.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <vector>
 
@@ -48,6 +52,10 @@ Range between(double lo, double hi, const char* brackets) {
 }
 
 const Range kPpcRange = between(1, 16, "[]");
+
+// Denser than any rock or metal (osmium: 22 590 kg/m3): a density beyond it
+// is a typo, and 1e300 overflows the masses and energies within steps.
+const Range kDensityRange = between(0.0, 1e5, "(]");
 
 // Frames a run may write (time.end / time.output_interval): far beyond any
 // useful series, and well short of a file count that fills a disk.
@@ -378,7 +386,8 @@ void read_scene_info(TableReader r, Scene& scene) {
 GridSpec read_grid(TableReader r) {
   r.check_keys({"cell_size", "min", "max", "shape", "domain", "ppc"});
   GridSpec grid;
-  grid.cell_size = r.need("cell_size").number(above(0.0));
+  const Value cell_size = r.need("cell_size");
+  grid.cell_size = cell_size.number(above(0.0));
   grid.min = r.need("min").vec2();
   const Value max = r.need("max");
   grid.max = max.vec2();
@@ -387,6 +396,12 @@ GridSpec read_grid(TableReader r) {
   if (auto v = r.find("ppc")) grid.ppc = v->integer(kPpcRange);
   if ((grid.max.array() <= grid.min.array()).any())
     max.fail("must be greater than grid.min in both x and y");
+  // A cell wider than the domain would snap grid.max back onto grid.min.
+  const Eigen::Array2d extent = (grid.max - grid.min).array();
+  if ((extent < grid.cell_size).any())
+    cell_size.fail("is larger than the domain grid.min to grid.max (" +
+                   format_number(extent.x()) + " m x " + format_number(extent.y()) +
+                   " m): at least one cell must fit across it");
   // Node indices along an axis are ints (and beyond that the extent itself
   // may overflow a double).
   const Eigen::Array2d cells = (grid.max - grid.min).array() / grid.cell_size;
@@ -533,7 +548,7 @@ std::vector<MaterialSpec> read_materials(const TableReader& root) {
     m.name = name.string();
     for (const MaterialSpec& earlier : materials)
       if (earlier.name == m.name) name.fail("duplicate material name " + in_quotes(m.name));
-    m.density = r.need("density").number(above(0.0));
+    m.density = r.need("density").number(kDensityRange);
     m.youngs_modulus = r.need("youngs_modulus").number(above(0.0));
     m.poisson_ratio = r.need("poisson_ratio").number(between(-1, 0.5, "()"));
     if (m.model == MaterialModel::Tresca) read_tresca(r, m);
@@ -783,21 +798,61 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   return scene;
 }
 
-Scene load_scene_file(const std::string& path) {
-  const SceneFileError unreadable("cannot open scene file '" + path + "'");
-  // A directory opens as a stream on Linux; only a regular file is a scene.
-  std::error_code ignored;
-  if (!std::filesystem::is_regular_file(path, ignored)) throw unreadable;
-  std::ifstream in(path, std::ios::binary);
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in.is_open() || in.bad()) throw unreadable;
-  return parse_scene(text, path);
+namespace {
+
+// Closes a descriptor when it goes out of scope.
+struct FdCloser {
+  int fd;
+  ~FdCloser() { ::close(fd); }
+};
+
+// The whole of an open regular file of `size` bytes.
+std::string read_all(int fd, std::size_t size, const std::string& path) {
+  std::string text(size, '\0');
+  std::size_t at = 0;
+  while (at < size) {
+    const ssize_t n = ::read(fd, text.data() + at, size - at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0)
+      throw SceneFileError("cannot read scene file '" + path + "': " + std::strerror(errno));
+    if (n == 0) break;  // shrunk while read: what is there
+    at += static_cast<std::size_t>(n);
+  }
+  text.resize(at);
+  return text;
 }
+
+}  // namespace
+
+std::string read_scene_text(const std::string& path) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer before fstat
+  // refuses it.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0)
+    throw SceneFileError("cannot open scene file '" + path + "': " + std::strerror(errno));
+  const FdCloser closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    throw SceneFileError("scene file '" + path +
+                         "' is not a regular file (a folder, a device or a pipe)");
+  if (static_cast<std::uint64_t>(st.st_size) > kMaxSceneBytes)
+    throw SceneFileError("scene file '" + path + "' is " + std::to_string(st.st_size) +
+                         " bytes, more than a scene may be (" + std::to_string(kMaxSceneBytes) +
+                         " bytes, 16 MiB)");
+  return read_all(fd, static_cast<std::size_t>(st.st_size), path);
+}
+
+Scene load_scene_file(const std::string& path) { return parse_scene(read_scene_text(path), path); }
 
 void apply_overrides(Scene& scene, std::optional<double> cell_size, std::optional<int> ppc,
                      std::optional<double> end_time) {
   if (cell_size) {
     check_override("--cell", *cell_size, above(0.0));
+    const Eigen::Array2d extent = (scene.grid.max - scene.grid.min).array();
+    if ((extent < *cell_size).any())
+      throw_error("", 0, "--cell", "is larger than the domain grid.min to grid.max (" +
+                                       format_number(extent.x()) + " m x " +
+                                       format_number(extent.y()) + " m)");
     scene.grid.cell_size = *cell_size;
     snap_max_to_node(scene.grid);
     scene.overrides.push_back("grid.cell_size = " + format_number(*cell_size));

@@ -11,6 +11,10 @@ namespace runout {
 // Throws std::runtime_error naming the path on any I/O failure.
 void write_file_atomically(const std::string& path, std::string_view contents);
 
+// Writes all of contents to fd, across short writes and EINTR; false with
+// errno set when a write fails (a full disk: ENOSPC).
+bool write_all(int fd, std::string_view contents);
+
 }  // namespace runout
 
 namespace runout {

@@ -27,6 +27,9 @@ struct ScheduleState {
   long checkpoint_rows = 0;  // a checkpoint every this many rows
   int frames = 0;            // frames written, frame_00000 .. frame_<frames - 1>
   std::vector<std::pair<double, std::string>> pvd;  // the index: time, file
+  // Each index entry's manifest line ("file size crc32") when the checkpoint
+  // was written: a resume keeps those frames only if they are still these.
+  std::vector<std::string> frame_records;
   double rest_peak = 0, rest_since = -1;            // the at-rest test (RestDetector)
   double initial_toe = 0;    // runout is measured from it
 };
@@ -46,6 +49,14 @@ struct Checkpoint {
 // another version, truncated, or failing its checksum. what() names the
 // file and the problem.
 class CheckpointError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The checkpoint is sound but the folder does not go with it (a kept frame
+// changed or missing, history.csv shorter than it counts): the resume is
+// refused before anything in the folder changes.
+class ResumeRefused : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };

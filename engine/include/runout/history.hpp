@@ -3,8 +3,8 @@
 // goes, so a killed run keeps every row it computed. Columns in
 // docs/output.md; the morphology ones are defined in docs/morphology.md.
 // Every method (MPM, the depth-averaged model) writes the same columns.
-#include <cstdio>
 #include <string>
+#include <string_view>
 
 #include "runout/morphology.hpp"
 #include "runout/particles.hpp"
@@ -28,11 +28,11 @@ HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& sh
                            double runout, double time, long step, double dt,
                            double basal_shear_force);
 
-// Cuts history.csv back to its header and first `rows` rows (a resumed
-// run's rows up to its checkpoint), dropping whatever a killed run wrote
-// after them, a torn last line included. Throws std::runtime_error when the
-// file is missing or holds fewer rows.
-void keep_history_rows(const std::string& path, long rows);
+// history.csv's header and first `rows` rows (a resumed run's rows up to
+// its checkpoint), without whatever a killed run wrote after them, a torn
+// last line included; the caller writes them back. Throws
+// std::runtime_error when the file is missing or holds fewer rows.
+std::string first_history_rows(const std::string& path, long rows);
 
 class HistoryWriter {
  public:
@@ -43,13 +43,17 @@ class HistoryWriter {
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
 
+  // Appends a whole row or, when the write fails (a full disk), none:
+  // throws std::runtime_error with the reason, the file cut back to its
+  // last whole row.
   void append(const HistoryRow& row);
   // The rows so far on the disk (fsync), before a checkpoint counts them.
   void sync();
 
  private:
+  void write_whole(std::string_view line);
   std::string path_;
-  std::FILE* file_;
+  int fd_;
 };
 
 }  // namespace runout

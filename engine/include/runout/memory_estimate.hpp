@@ -62,7 +62,9 @@ struct CostLimits {
   double max_steps = 1e8;                    // at a few M particle-steps/s, days of work
   double max_output_bytes = 16.0 * (1 << 30);  // a frame series a workstation keeps
   std::string steps_option = "--max-steps";  // how to raise each limit
-  std::string output_option = "--max-output";
+  // What lifts the output bound: the option, or, where the disk's free
+  // space is the bound, room on the disk.
+  std::string output_remedy = "raise the limit with --max-output";
   std::string output_limit_is = "the limit";  // "the limit", or what else bounds it (a disk)
 };
 
@@ -71,6 +73,11 @@ struct SceneSource {
   std::string name;
   std::string text;
 };
+
+// require_memory(scene, method) with the refusal placed at the line of
+// the key it names in source ("scene.toml:7: grid.cell_size: ..."), as the
+// parser's errors are.
+void require_memory(const Scene& scene, Method method, const SceneSource& source);
 
 // Throws SceneError when the MPM run needs more steps than
 // limits.max_steps (naming time.end, the step and what sets it) or writes

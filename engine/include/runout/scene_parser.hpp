@@ -1,6 +1,7 @@
 #pragma once
 // Scene files (TOML, schema in docs/scene-format.md): parsing, validation
 // and the resolved form written beside a run's frames.
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -33,6 +34,15 @@ class SceneFileError : public SceneError {
 // source_name is used in messages ("default.toml:12: ...").
 Scene parse_scene(std::string_view text, const std::string& source_name);
 Scene load_scene_file(const std::string& path);  // throws SceneFileError or SceneError
+
+// The largest scene file read (docs/scene-format.md): a scene is text, and
+// a path to something endless (/dev/zero behind a link) must not fill the
+// memory.
+inline constexpr std::uint64_t kMaxSceneBytes = std::uint64_t{16} << 20;
+
+// The text of the scene file at path; throws SceneFileError unless it is a
+// regular file of at most kMaxSceneBytes that can be read.
+std::string read_scene_text(const std::string& path);
 
 // The scene with every default filled in, as TOML that parse_scene accepts
 // and that reproduces the same Scene.

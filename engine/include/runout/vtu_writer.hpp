@@ -39,11 +39,17 @@ void write_particles_vtu(const std::string& path, const Particles& particles,
 class PvdIndex {
  public:
   using Entries = std::vector<std::pair<double, std::string>>;  // time, file
-  // With entries (a resumed run's), the index is written at once.
-  explicit PvdIndex(std::string path, Entries entries = {});
+  // With entries (a resumed run's), the index is written at once, with
+  // `records` as their manifest lines where there is one per entry (a
+  // resume has just checked them against the files), else each frame's
+  // read from disk.
+  explicit PvdIndex(std::string path, Entries entries = {},
+                    std::vector<std::string> records = {});
   void add(double time, const std::string& relative_file);
   const std::string& path() const { return path_; }
   const Entries& entries() const { return frames_; }
+  // Each entry's manifest line, as entries().
+  const std::vector<std::string>& records() const { return manifest_; }
 
  private:
   void write() const;
@@ -53,6 +59,10 @@ class PvdIndex {
 };
 
 inline std::string manifest_path(const std::string& pvd_path) { return pvd_path + ".manifest"; }
+
+// The manifest line ("file size crc32") of frame `file` in `folder` as it
+// is on disk now; "file 0 unreadable" when it cannot be read.
+std::string frame_record(const std::string& folder, const std::string& file);
 
 // The (time, file) entries of the .pvd at pvd_path, in order; a time that
 // does not parse is NaN. Throws std::runtime_error when it cannot be read.
