@@ -404,9 +404,9 @@ struct BandFlowCase {
 
 std::ostream& operator<<(std::ostream& os, const BandFlowCase& c) { return os << c.name; }
 
-class BandFlow : public ::testing::TestWithParam<BandFlowCase> {};
+class DamBandFlow : public ::testing::TestWithParam<BandFlowCase> {};
 
-TEST_P(BandFlow, SteadyLayerOnAnInclineHasTheAnalyticProfileAndDischarge) {
+TEST_P(DamBandFlow, SteadyLayerOnAnInclineHasTheAnalyticProfileAndDischarge) {
   // As PlugFlowSpeed: tau_b = 1.70 kPa, tau_y = 1 kPa, A = 500 Pa, so the
   // plug flow shears h_s = 0.41 m of the 1 m layer; a band of 0.1 m is
   // thinner (the plug flow's layer), one of 0.8 m thicker (the band's).
@@ -435,7 +435,7 @@ TEST_P(BandFlow, SteadyLayerOnAnInclineHasTheAnalyticProfileAndDischarge) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    PlugFlowLayerAndBand, BandFlow,
+    PlugFlowLayerAndBand, DamBandFlow,
     ::testing::Values(BandFlowCase{"BinghamThinBand", 1.0, 0.1},
                       BandFlowCase{"BinghamThickBand", 1.0, 0.8},
                       BandFlowCase{"HalfPowerThinBand", 0.5, 0.1},
@@ -457,9 +457,9 @@ struct RemouldingCase {
 
 std::ostream& operator<<(std::ostream& os, const RemouldingCase& c) { return os << c.name; }
 
-class BandRemoulding : public ::testing::TestWithParam<RemouldingCase> {};
+class DamBandRemoulding : public ::testing::TestWithParam<RemouldingCase> {};
 
-TEST_P(BandRemoulding, LayerShearedAtConstantRateRemouldsAfterTheAnalyticDisplacement) {
+TEST_P(DamBandRemoulding, LayerShearedAtConstantRateRemouldsAfterTheAnalyticDisplacement) {
   const RemouldingCase c = GetParam();
   const double h = 1.0, band = 0.2, xi95 = 5.0, speed = 1.0;
   Scene s = tresca_layer(10.0, h, 0.0, 1e9, 1e4, 1e6);
@@ -498,7 +498,7 @@ TEST_P(BandRemoulding, LayerShearedAtConstantRateRemouldsAfterTheAnalyticDisplac
   EXPECT_NEAR(strength(strength_params(m), xi95, 0.0), 1e4 * (0.025 + 0.05 * 0.975), 1e-3 * 1e4);
 }
 
-INSTANTIATE_TEST_SUITE_P(RateFreeAndRateDependent, BandRemoulding,
+INSTANTIATE_TEST_SUITE_P(RateFreeAndRateDependent, DamBandRemoulding,
                          ::testing::Values(RemouldingCase{"RateFree", 0.0, 0.1},
                                            RemouldingCase{"HalfPower", 0.0167, 0.5}),
                          [](const auto& info) { return std::string(info.param.name); });
@@ -567,7 +567,7 @@ struct WaterCase {
 
 std::ostream& operator<<(std::ostream& os, const WaterCase& c) { return os << c.name; }
 
-class AmbientWater : public ::testing::TestWithParam<WaterCase> {};
+class DamAmbientWater : public ::testing::TestWithParam<WaterCase> {};
 
 double mean_velocity(const DamSolver& dam) {
   double momentum = 0.0, mass = 0.0;
@@ -578,18 +578,22 @@ double mean_velocity(const DamSolver& dam) {
   return momentum / mass;
 }
 
-TEST_P(AmbientWater, RigidBlockFollowsTheDragLimitedMotion) {
+TEST_P(DamAmbientWater, RigidBlockFollowsTheDragLimitedMotion) {
   // 100 m x 2 m on 10 degrees, tau = 1 kPa: a = 0.870 m/s2 without added
-  // mass; C_F L + C_P H = 1, 2 or 3 m, V_t = 14.3, 10.1 or 8.2 m/s, reached
-  // (tanh > 0.9999) well within the 60 s.
+  // mass; C_F L + C_P H = 1, 2 or 3 m, V_t = 14.3, 10.1 or 8.2 m/s, within
+  // 0.2 % by 60 s (tanh(a t / V_t) >= 0.9987). E = 1e8 Pa makes the block
+  // rigid: with the fixture's 1e6 Pa its length and face height strained by
+  // up to 3 % under the drag, and the speeds came 0.4 to 0.9 % below the
+  // rigid block's (0.1 to 0.5 % at 1e7 Pa).
   const WaterCase c = GetParam();
   const double rho = 600.0, rho_w = 1025.0, L = 100.0, H = 2.0, tau = 1000.0, theta = 10.0;
   Scene s = layer_scene(L, H, theta, rho, tau);
+  s.materials[0].youngs_modulus = 1e8;
   s.dam.water_density = rho_w;
   s.dam.skin_friction = c.skin_friction;
   s.dam.pressure_drag = c.pressure_drag;
   s.dam.added_mass = c.added_mass;
-  DamSolver dam(with_elements(s, 100));
+  DamSolver dam(with_elements(s, 50));
   const double drive = kG * std::sin(theta * kPi / 180.0) - tau / (rho * H);
   const double a = drive / (1.0 + c.added_mass * rho_w / rho);
   const double terminal =
@@ -603,7 +607,7 @@ TEST_P(AmbientWater, RigidBlockFollowsTheDragLimitedMotion) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    DragAndAddedMass, AmbientWater,
+    DragAndAddedMass, DamAmbientWater,
     ::testing::Values(WaterCase{"SkinFriction", 0.01, 0.0, 0.0},
                       WaterCase{"PressureDrag", 0.0, 1.0, 0.0},
                       WaterCase{"BothDrags", 0.01, 1.0, 0.0},

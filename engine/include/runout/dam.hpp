@@ -120,7 +120,8 @@ class DamSolver {
   double viscous_force(int e) const;
   std::vector<double> driving_forces() const;
   ShearLayer basal_shear(int e, double cap) const;
-  double water_drag(std::size_t node) const;
+  double skin_friction(std::size_t node) const;  // [N/m]
+  double form_drag_deceleration() const;          // [m/s2], the same for every node
   void update_basal_state(double dt);
   void update_velocities(const std::vector<double>& drive, double dt);
   void update_layer_stress(double dt);
