@@ -390,6 +390,129 @@ TEST_P(PlugFlowSpeed, LayerOnAnInclineReachesTheAnalyticSpeed) {
 INSTANTIATE_TEST_SUITE_P(BinghamAndShearThinning, PlugFlowSpeed, ::testing::Values(1.0, 0.5),
                          [](const auto& info) { return info.param == 1.0 ? "Bingham" : "HalfPower"; });
 
+// The band estimate on the same incline (docs/dam.md, "Shear strain rate"):
+// the sheared layer is the plug flow's h_s = h (1 - tau_y / tau_b) or the
+// band thickness t_s, whichever is thicker. Steady, tau_b = rho g h sin(theta)
+// = su at the basal rate, so the basal rate is the plug flow's whatever the
+// layer's thickness d_s; across d_s the Herschel-Bulkley profile
+// u = u_p (1 - (1 - z / d_s)^(1 + 1/n)) carries u_p = gamma_dot_b d_s n / (n + 1)
+// and the depth average v = u_p (1 - d_s / h n / (2 n + 1)).
+struct BandFlowCase {
+  const char* name;
+  double n, band;
+};
+
+std::ostream& operator<<(std::ostream& os, const BandFlowCase& c) { return os << c.name; }
+
+class DamBandFlow : public ::testing::TestWithParam<BandFlowCase> {};
+
+TEST_P(DamBandFlow, SteadyLayerOnAnInclineHasTheAnalyticProfileAndDischarge) {
+  // As PlugFlowSpeed: tau_b = 1.70 kPa, tau_y = 1 kPa, A = 500 Pa, so the
+  // plug flow shears h_s = 0.41 m of the 1 m layer; a band of 0.1 m is
+  // thinner (the plug flow's layer), one of 0.8 m thicker (the band's).
+  const BandFlowCase c = GetParam();
+  const double rho = 1000.0, h = 1.0, theta = 10.0, su0 = 1000.0, eta = 0.5;
+  Scene s = tresca_layer(2000.0, h, theta, rho, su0, 1e6);
+  s.materials[0].strength_form = StrengthForm::Additive;
+  s.materials[0].eta = eta;
+  s.materials[0].rate_exponent = c.n;
+  s.materials[0].band_thickness = c.band;
+  DamSolver dam(with_elements(s, 200, ShearRateEstimate::Band));
+  dam.advance_to(10.0);
+  const double tau_b = rho * kG * h * std::sin(theta * kPi / 180.0);
+  const double basal_rate = std::pow((tau_b - su0) / (su0 * eta), 1.0 / c.n);  // gamma_dot_ref 1
+  const double d_s = std::max(h * (1.0 - su0 / tau_b), c.band);
+  const double u_p = basal_rate * d_s * c.n / (c.n + 1.0);
+  const double discharge = u_p * h * (1.0 - d_s / h * c.n / (2.0 * c.n + 1.0));
+  const int e = 100;
+  const double v = dam.element_velocity(e);
+  EXPECT_NEAR(v * dam.thickness(e), discharge, 0.01 * discharge);
+  EXPECT_NEAR(dam.gamma_dot()[e], basal_rate, 0.01 * basal_rate);
+  const ShearLayer layer = sheared_layer(strength_params(s.materials[0]), dam.xi()[e], v,
+                                         dam.thickness(e), kInfinity, c.band);
+  EXPECT_NEAR(layer.thickness, d_s, 0.01 * d_s);
+  EXPECT_NEAR(layer.mean_rate * layer.thickness, u_p, 0.01 * u_p);  // the plug's speed
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    PlugFlowLayerAndBand, DamBandFlow,
+    ::testing::Values(BandFlowCase{"BinghamThinBand", 1.0, 0.1},
+                      BandFlowCase{"BinghamThickBand", 1.0, 0.8},
+                      BandFlowCase{"HalfPowerThinBand", 0.5, 0.1},
+                      BandFlowCase{"HalfPowerThickBand", 0.5, 0.8}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+// A sensitive layer (St = 40, xi95 = 5) carried at a constant speed over a
+// no-slip base: so heavy that its base's strength cannot slow it (1e-5 of
+// its speed a second), and without gravity. With a band t_s = 0.2 m thicker
+// than the plug flow's layer, its base's softening variable is the plug's
+// displacement over t_s, xi_b = delta / t_s (the MPM's regularised band,
+// docs/strength.md), so it is 95 % remoulded after delta95 = xi95 t_s = 1 m,
+// whatever the profile: the plug's displacement is the layer's over
+// 1 - c t_s / h, c = n / (2 n + 1) (1/2 without a rate term).
+struct RemouldingCase {
+  const char* name;
+  double eta, n;
+};
+
+std::ostream& operator<<(std::ostream& os, const RemouldingCase& c) { return os << c.name; }
+
+class DamBandRemoulding : public ::testing::TestWithParam<RemouldingCase> {};
+
+TEST_P(DamBandRemoulding, LayerShearedAtConstantRateRemouldsAfterTheAnalyticDisplacement) {
+  const RemouldingCase c = GetParam();
+  const double h = 1.0, band = 0.2, xi95 = 5.0, speed = 1.0;
+  Scene s = tresca_layer(10.0, h, 0.0, 1e9, 1e4, 1e6);
+  s.gravity.vector = {0.0, 0.0};
+  s.bodies[0].velocity = {speed, 0.0};
+  // Multiplicative, so that the rate term softens with the yield stress and
+  // the plug flow's layer keeps its thickness (about 0.09 m at n = 0.5).
+  MaterialSpec& m = s.materials[0];
+  m.strength_form = StrengthForm::Multiplicative;
+  m.sensitivity = 40.0;
+  m.xi95 = xi95;
+  m.eta = c.eta;
+  m.rate_exponent = c.n;
+  m.band_thickness = band;
+  DamSolver dam(with_elements(s, 100, ShearRateEstimate::Band));
+  const int e = 50;
+  // The premise: the band is thicker than the plug flow's layer, intact and remoulded.
+  for (double xi : {0.0, xi95})
+    ASSERT_EQ(sheared_layer(strength_params(m), xi, speed, h, kInfinity, band).thickness, band);
+  const double c_profile = c.eta > 0.0 ? c.n / (2.0 * c.n + 1.0) : 0.5;
+  const double s0 = dam.mid(e);
+  double xi_before = 0.0, moved_before = 0.0;
+  while (dam.xi()[e] < xi95) {
+    xi_before = dam.xi()[e];
+    moved_before = dam.mid(e) - s0;
+    dam.step(dam.stable_dt());
+  }
+  // xi_b and the displacement both grow linearly within a step: where xi_b
+  // crosses xi95, by interpolation.
+  const double w = (xi95 - xi_before) / (dam.xi()[e] - xi_before);
+  const double moved = moved_before + w * (dam.mid(e) - s0 - moved_before);
+  const double plug_displacement = moved / (1.0 - c_profile * band / h);
+  EXPECT_NEAR(plug_displacement, xi95 * band, 0.01 * xi95 * band);
+  EXPECT_NEAR(dam.element_velocity(e), speed, 1e-4 * speed);  // sheared at a constant rate
+  // 95 % of the remoulding: su(xi95, 0) = su0 (d_rem + 0.05 (1 - d_rem)).
+  EXPECT_NEAR(strength(strength_params(m), xi95, 0.0), 1e4 * (0.025 + 0.05 * 0.975), 1e-3 * 1e4);
+}
+
+INSTANTIATE_TEST_SUITE_P(RateFreeAndRateDependent, DamBandRemoulding,
+                         ::testing::Values(RemouldingCase{"RateFree", 0.0, 0.1},
+                                           RemouldingCase{"HalfPower", 0.0167, 0.5}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Dam, BandEstimateIsRefusedWithoutABandThickness) {
+  try {
+    DamSolver dam(with_elements(tresca_layer(10.0, 1.0, 5.0, 1000.0, 1e3, 1e6), 10,
+                                ShearRateEstimate::Band));
+    FAIL() << "a clay without band_thickness was given the band estimate";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs band_thickness"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Dam, PlugShearRateSatisfiesThePlugFlowRelations) {
   // Whatever the speed, thickness, softening and form: the returned basal
   // rate, with tau_b = su(xi, rate) and f = 1 - tau_y / tau_b, carries the
@@ -427,6 +550,83 @@ TEST(Dam, PlugEstimateIsRefusedWithoutARateTerm) {
     EXPECT_NE(std::string(e.what()).find("needs a rate-dependent strength"), std::string::npos)
         << e.what();
   }
+}
+
+// Ambient water (docs/dam.md, "Ambient water"). A rigid block of length L
+// and thickness H on a slope, on a frictional interface tau, with skin
+// friction C_F on its top and pressure drag C_P on its front face, and the
+// added mass C_m rho_w per unit volume:
+//   (rho + C_m rho_w) L H dV/dt = L H (rho g sin(theta) - tau / H) - 0.5 rho_w V^2 (C_F L + C_P H),
+// so V(t) = V_t tanh(a t / V_t), with a = (g sin(theta) - tau / (rho H)) /
+// (1 + C_m rho_w / rho) and the terminal velocity, which the added mass
+// does not change, V_t^2 = rho L H (g sin(theta) - tau / (rho H)) / (0.5 rho_w (C_F L + C_P H)).
+struct WaterCase {
+  const char* name;
+  double skin_friction, pressure_drag, added_mass;
+};
+
+std::ostream& operator<<(std::ostream& os, const WaterCase& c) { return os << c.name; }
+
+class DamAmbientWater : public ::testing::TestWithParam<WaterCase> {};
+
+double mean_velocity(const DamSolver& dam) {
+  double momentum = 0.0, mass = 0.0;
+  for (std::size_t i = 0; i < dam.v().size(); ++i) {
+    momentum += dam.node_mass()[i] * dam.v()[i];
+    mass += dam.node_mass()[i];
+  }
+  return momentum / mass;
+}
+
+TEST_P(DamAmbientWater, RigidBlockFollowsTheDragLimitedMotion) {
+  // 100 m x 2 m on 10 degrees, tau = 1 kPa: a = 0.870 m/s2 without added
+  // mass; C_F L + C_P H = 1, 2 or 3 m, V_t = 14.3, 10.1 or 8.2 m/s, within
+  // 0.2 % by 60 s (tanh(a t / V_t) >= 0.9987). E = 1e8 Pa makes the block
+  // rigid: with the fixture's 1e6 Pa its length and face height strained by
+  // up to 3 % under the drag, and the speeds came 0.4 to 0.9 % below the
+  // rigid block's (0.1 to 0.5 % at 1e7 Pa).
+  const WaterCase c = GetParam();
+  const double rho = 600.0, rho_w = 1025.0, L = 100.0, H = 2.0, tau = 1000.0, theta = 10.0;
+  Scene s = layer_scene(L, H, theta, rho, tau);
+  s.materials[0].youngs_modulus = 1e8;
+  s.dam.water_density = rho_w;
+  s.dam.skin_friction = c.skin_friction;
+  s.dam.pressure_drag = c.pressure_drag;
+  s.dam.added_mass = c.added_mass;
+  DamSolver dam(with_elements(s, 50));
+  const double drive = kG * std::sin(theta * kPi / 180.0) - tau / (rho * H);
+  const double a = drive / (1.0 + c.added_mass * rho_w / rho);
+  const double terminal =
+      std::sqrt(rho * L * H * drive / (0.5 * rho_w * (c.skin_friction * L + c.pressure_drag * H)));
+  for (double t : {2.0, 5.0, 10.0, 20.0, 60.0}) {
+    dam.advance_to(t);
+    const double expected = terminal * std::tanh(a * t / terminal);
+    EXPECT_NEAR(mean_velocity(dam), expected, 0.01 * expected) << "at " << t << " s";
+  }
+  EXPECT_NEAR(mean_velocity(dam), terminal, 0.01 * terminal);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    DragAndAddedMass, DamAmbientWater,
+    ::testing::Values(WaterCase{"SkinFriction", 0.01, 0.0, 0.0},
+                      WaterCase{"PressureDrag", 0.0, 1.0, 0.0},
+                      WaterCase{"BothDrags", 0.01, 1.0, 0.0},
+                      WaterCase{"BothDragsAndAddedMass", 0.01, 1.0, 0.1}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Dam, AddedMassSlowsTheAccelerationOfTheSlab) {
+  // The slab of UniformSlabAcceleratesAtTheRigidBlockRate with C_m = 0.1:
+  // the same forces move rho + C_m rho_w per unit volume, so the middle
+  // accelerates at (g sin(theta) - tau / (rho h)) / (1 + C_m rho_w / rho).
+  const double rho = 2000.0, h = 1.0, tau = 1000.0, theta = 10.0, rho_w = 1025.0, c_m = 0.1;
+  Scene s = layer_scene(400.0, h, theta, rho, tau);
+  s.dam.water_density = rho_w;
+  s.dam.added_mass = c_m;
+  DamSolver dam(with_elements(s, 400));
+  dam.advance_to(1.0);
+  const double expected =
+      (kG * std::sin(theta * kPi / 180.0) - tau / (rho * h)) / (1.0 + c_m * rho_w / rho);
+  EXPECT_NEAR(dam.v()[200] / dam.time(), expected, 1e-9 * expected);
 }
 
 TEST(Dam, MassAtRestBelowItsStrengthStaysAtRest) {

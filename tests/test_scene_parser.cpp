@@ -297,7 +297,20 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"UnknownMethod", 3, 3, "method = \"sph\"", 3, "scene.method",
                   "must be one of \"mpm\", \"dam\" (got \"sph\")"},
         ErrorCase{"UnknownShearRate", 13, 13, "[dam]\nshear_rate = \"cubic\"", 14,
-                  "dam.shear_rate", "must be one of \"linear\", \"plug\""},
+                  "dam.shear_rate", "must be one of \"linear\", \"plug\", \"band\""},
+        // The band's thickness is the clay's: a slide without one has none.
+        ErrorCase{"BandWithoutBandThickness", 13, 13, "[dam]\nshear_rate = \"band\"", 14,
+                  "dam.shear_rate", "\"band\" needs band_thickness in the material"},
+        ErrorCase{"NegativeSkinFriction", 13, 13, "[dam]\nskin_friction = -0.01", 14,
+                  "dam.skin_friction", "must be >= 0 (got -0.01)"},
+        ErrorCase{"NegativePressureDrag", 13, 13, "[dam]\npressure_drag = -1", 14,
+                  "dam.pressure_drag", "must be >= 0 (got -1)"},
+        ErrorCase{"AddedMassNotANumber", 13, 13, "[dam]\nadded_mass = \"some\"", 14,
+                  "dam.added_mass", "expected a number, got string"},
+        ErrorCase{"NoWater", 13, 13, "[dam]\nwater_density = 0", 14, "dam.water_density",
+                  "must be > 0 (got 0)"},
+        ErrorCase{"UnknownWaterKey", 13, 13, "[dam]\nform_drag = 1", 14, "dam.form_drag",
+                  "unknown key"},
         ErrorCase{"NegativeElements", 13, 13, "[dam]\nelements = -1", 14, "dam.elements",
                   "must be >= 0 (got -1)"},
         ErrorCase{"UnknownEarthPressure", 13, 13, "[dam]\nearth_pressure = \"coulomb\"", 14,
@@ -537,6 +550,10 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.dam.shear_rate, b.dam.shear_rate);
   EXPECT_EQ(a.dam.elements, b.dam.elements);
   EXPECT_EQ(a.dam.earth_pressure, b.dam.earth_pressure);
+  EXPECT_EQ(a.dam.water_density, b.dam.water_density);
+  EXPECT_EQ(a.dam.skin_friction, b.dam.skin_friction);
+  EXPECT_EQ(a.dam.pressure_drag, b.dam.pressure_drag);
+  EXPECT_EQ(a.dam.added_mass, b.dam.added_mass);
   EXPECT_EQ(a.output.compress, b.output.compress);
   EXPECT_EQ(a.overrides, b.overrides);
 }
@@ -591,18 +608,43 @@ TEST(SceneWriter, PlanarBaseAndTrescaDefaultsRoundTrip) {
 // The depth-averaged model's keys: the method in [scene], the [dam] table.
 TEST(SceneWriter, DepthAveragedKeysRoundTrip) {
   Scene s = parse_scene(replace_lines(3, 3, "method = \"dam\"") +
-                            "[dam]\nshear_rate = \"plug\"\nearth_pressure = \"hydrostatic\"\nelements = 120\n",
+                            "[dam]\nshear_rate = \"plug\"\nearth_pressure = \"hydrostatic\"\nelements = 120\n"
+                            "water_density = 1030.5\nskin_friction = 0.0125\npressure_drag = 0.75\n"
+                            "added_mass = 0.125\n",
                         "dam.toml");
   EXPECT_EQ(s.method, Method::Dam);
   EXPECT_EQ(s.dam.shear_rate, ShearRateEstimate::Plug);
   EXPECT_EQ(s.dam.elements, 120);
   EXPECT_EQ(s.dam.earth_pressure, EarthPressure::Hydrostatic);
+  EXPECT_EQ(s.dam.water_density, 1030.5);
+  EXPECT_EQ(s.dam.skin_friction, 0.0125);
+  EXPECT_EQ(s.dam.pressure_drag, 0.75);
+  EXPECT_EQ(s.dam.added_mass, 0.125);
   expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
   const Scene defaults = parse_scene(kMinimal, "mini.toml");
   EXPECT_EQ(defaults.method, Method::Mpm);
   EXPECT_EQ(defaults.dam.shear_rate, ShearRateEstimate::Linear);
   EXPECT_EQ(defaults.dam.elements, 0);
   EXPECT_EQ(defaults.dam.earth_pressure, EarthPressure::Rankine);
+  // The ambient water is off unless asked for.
+  EXPECT_EQ(defaults.dam.water_density, 1025.0);
+  EXPECT_EQ(defaults.dam.skin_friction, 0.0);
+  EXPECT_EQ(defaults.dam.pressure_drag, 0.0);
+  EXPECT_EQ(defaults.dam.added_mass, 0.0);
+}
+
+// The band is the default shear rate where the slide's clay has a band
+// thickness; linear and plug stay selectable, and the choice round-trips.
+TEST(SceneWriter, BandIsTheDefaultWithABandThickness) {
+  const std::string clay = replace_lines(18, 18, std::string(kTrescaClay) + "\nband_thickness = 0.2");
+  const Scene band = parse_scene(clay, "band.toml");
+  EXPECT_EQ(band.dam.shear_rate, ShearRateEstimate::Band);
+  expect_same_scene(parse_scene(to_toml(band), "resolved.toml"), band);
+  const Scene linear = parse_scene(clay + "\n[dam]\nshear_rate = \"linear\"\n", "linear.toml");
+  EXPECT_EQ(linear.dam.shear_rate, ShearRateEstimate::Linear);
+  expect_same_scene(parse_scene(to_toml(linear), "resolved.toml"), linear);
+  EXPECT_EQ(parse_scene(replace_lines(18, 18, kTrescaClay), "local.toml").dam.shear_rate,
+            ShearRateEstimate::Linear);
 }
 
 TEST(SceneWriter, MethodOverridesAreRecordedAndChecked) {

@@ -102,7 +102,8 @@ void add_scene_args(CLI::App* cmd, SceneArgs& a) {
   cmd->add_option("--method", a.method, "Override the method: mpm or dam (depth-averaged)");
   cmd->add_option("--shape", a.shape, "Override the MPM shape functions: gimp or linear");
   cmd->add_option("--shear-rate", a.shear_rate,
-                  "Override the depth-averaged shear rate estimate: linear or plug");
+                  "Override the depth-averaged shear rate estimate: band (the default where the "
+                  "slide's clay has band_thickness), linear or plug");
   cmd->add_option("--elements", a.elements,
                   "Override the depth-averaged element count (0: length / cell size)");
 }

@@ -75,6 +75,46 @@ struct PlugFlow {
   }
 };
 
+// Steady plug flow at speed v and thickness h, for a rheology with a rate
+// term (A > 0).
+PlugFlow plug_flow(const StrengthParams& p, double tau_y, double A, double speed, double h) {
+  const double n = p.rate_exponent;
+  const double k = (n + 1.0) * speed / (n * h * p.reference_rate);
+  return {n, n / (2.0 * n + 1.0), std::log(tau_y / A) - n * std::log(k)};
+}
+
+// The sheared fraction of the layer: the plug flow's, or the band's t_s / h
+// where that is thicker (and never more than the whole layer). phi grows
+// with f, so phi(t_s / h) >= 0 says the plug flow's root lies below the
+// band without finding it: one evaluation instead of Newton's iterations.
+double sheared_fraction(const StrengthParams& p, double tau_y, double A, double speed, double h,
+                        double band) {
+  const double floor = std::min(1.0, band / h);
+  if (!(A > 0.0)) return floor;
+  const PlugFlow flow = plug_flow(p, tau_y, A, speed, h);
+  if (floor > 0.0 && flow.phi(std::log(floor)) >= 0.0) return floor;
+  return std::exp(flow.root());
+}
+
+// The velocity profile across a sheared layer of thickness d under a plug
+// moving at u_p, as BING and BingClaw write it (Imran, Harff & Parker 2001,
+// Comput. Geosci. 27; Kim, Lovholt, Issler & Forsberg 2019, J. Geophys.
+// Res. Oceans 124): u(z) = u_p (1 - (1 - z / d)^(1 + 1/n)) for a
+// Herschel-Bulkley clay of exponent n, so the basal rate is
+// (1 + 1/n) u_p / d and the layer's depth average u_p (n + 1) / (2 n + 1),
+// which makes the whole layer's v = u_p (1 - c d / h), c = n / (2 n + 1).
+// Without a rate term the rheology sets no profile inside the band, and
+// it shears uniformly, as the MPM's regularised band does (strength.md):
+// the limit n -> infinity, factor 1 and c = 1/2.
+struct ShearProfile {
+  double factor, c;
+};
+
+ShearProfile shear_profile(double A, double n) {
+  if (!(A > 0.0)) return {1.0, 0.5};
+  return {(n + 1.0) / n, n / (2.0 * n + 1.0)};
+}
+
 // The engineering plastic shear strain dgamma of one step of a viscoplastic
 // layer whose strength depends on its *plastic* shear rate dgamma / dt
 // (docs/dam.md, "Longitudinal stress"). Backward Euler: the returned stress
@@ -122,23 +162,32 @@ double BasalLaw::interface_limit(double normal_stress) const {
   return kInfinity;
 }
 
-double plug_flow_shear_rate(const StrengthParams& p, double xi, double speed, double h,
-                            double cap) {
+ShearLayer sheared_layer(const StrengthParams& p, double xi, double speed, double h, double cap,
+                         double band) {
   const double tau_y = strength(p, xi, 0.0);
   // At rest, or sliding on an interface weaker than the clay: no shear in it.
-  if (speed == 0.0 || cap <= tau_y) return 0.0;
+  if (speed == 0.0 || cap <= tau_y) return {};
   // su(xi, gamma_dot) - tau_y = A (gamma_dot / gamma_dot_ref)^n in both
-  // strength forms (strength.hpp): A is the rate term at the reference rate.
-  const double A = strength(p, xi, p.reference_rate) - tau_y;
-  const double n = p.rate_exponent, c = n / (2.0 * n + 1.0);
-  const double k = (n + 1.0) * speed / (n * h * p.reference_rate);
-  const PlugFlow flow{n, c, std::log(tau_y / A) - n * std::log(k)};
-  const double f = std::exp(flow.root());
-  const double rate = (n + 1.0) * speed / (n * f * h * (1.0 - c * f));
-  if (!std::isfinite(cap)) return rate;
+  // strength forms (strength.hpp): A is the rate term at the reference rate
+  // (exactly 0 without one, not the round-off of su(xi, ref) - tau_y).
+  const double A = p.eta > 0.0 ? strength(p, xi, p.reference_rate) - tau_y : 0.0;
+  const double n = p.rate_exponent;
+  // The band: a layer that the rheology would make thinner than t_s shears
+  // over t_s, the clay's physical band thickness (as the MPM's band does).
+  const double f = sheared_fraction(p, tau_y, A, speed, h, band);
+  const ShearProfile profile = shear_profile(A, n);
+  const double plug_speed = speed / (1.0 - profile.c * f);
+  double rate = profile.factor * plug_speed / (f * h);
   // The interface slips at cap: the clay above it shears at the rate where
   // its strength reaches cap, if that is less.
-  return std::min(rate, p.reference_rate * std::pow((cap - tau_y) / A, 1.0 / n));
+  if (A > 0.0 && std::isfinite(cap))
+    rate = std::min(rate, p.reference_rate * std::pow((cap - tau_y) / A, 1.0 / n));
+  return {f * h, rate, rate / profile.factor};
+}
+
+double plug_flow_shear_rate(const StrengthParams& p, double xi, double speed, double h,
+                            double cap) {
+  return sheared_layer(p, xi, speed, h, cap, 0.0).basal_rate;
 }
 
 double thickness_along_normal(const Polygon& polygon, const BaseView& base, double s) {
@@ -198,6 +247,17 @@ DamSolver::DamSolver(const Scene& scene)
                          ": dam.shear_rate = \"plug\" needs a rate-dependent strength (eta > 0); "
                          "without one the plug flow has no sheared layer (use \"linear\")",
                      0);
+  // The band is the length that the layer's thickness takes where the
+  // rheology gives none: without t_s it would be the plug estimate.
+  band_ = material.band_thickness;
+  if (options_.shear_rate == ShearRateEstimate::Band && !(band_ > 0.0))
+    throw SceneError("material " + material.name +
+                         ": dam.shear_rate = \"band\" needs band_thickness, the thickness of the "
+                         "clay's shear band",
+                     0);
+  // The water accelerated with the slide (added mass, C_m times the
+  // displaced water) adds to the inertia of every part of it alike.
+  inertia_ = 1.0 + options_.added_mass * options_.water_density / density_;
   // Undrained, so incompressible: in plane strain sigma_x - sigma_z grows at
   // 2 G (eps_x - eps_z) = 4 G eps_x. K = 1 is the layer without stiffness
   // (and so without strength): its deviator stays 0.
@@ -294,31 +354,78 @@ std::vector<double> DamSolver::driving_forces() const {
   return drive;
 }
 
-double DamSolver::basal_shear_rate(int e, double sigma_n) const {
+// The linear and plug estimates soften the base at their basal rate; the
+// band at the layer's mean rate, the plug's displacement over d_s, so that
+// a band of t_s remoulds after the displacement xi95 t_s, as the MPM's
+// regularised band does (docs/dam.md, "Shear strain rate").
+ShearLayer DamSolver::basal_shear(int e, double cap) const {
   const double speed = std::abs(element_velocity(e)), h = thickness(e);
-  if (options_.shear_rate == ShearRateEstimate::Linear) return 2.0 * speed / h;
-  return plug_flow_shear_rate(law_.strength, xi_[e], speed, h, law_.interface_limit(sigma_n));
+  switch (options_.shear_rate) {
+    case ShearRateEstimate::Linear: return {h, 2.0 * speed / h, 2.0 * speed / h};
+    case ShearRateEstimate::Plug: {
+      const ShearLayer layer = sheared_layer(law_.strength, xi_[e], speed, h, cap, 0.0);
+      return {layer.thickness, layer.basal_rate, layer.basal_rate};
+    }
+    case ShearRateEstimate::Band: break;
+  }
+  return sheared_layer(law_.strength, xi_[e], speed, h, cap, band_);
 }
 
 // The basal resistance of every element at its current rate: the clay's
 // strength, capped by the interface. The softening variable xi_b advances
-// by gamma_dot dt only where the clay fails at its base: on an interface
-// weaker than the clay the layer slides on it, and its base is not sheared
-// plastically (as in the MPM, where slip at the interface is no plastic strain).
+// only where the clay fails at its base: on an interface weaker than the
+// clay the layer slides on it, and its base is not sheared plastically (as
+// in the MPM, where slip at the interface is no plastic strain).
 void DamSolver::update_basal_state(double dt) {
   for (int e = 0; e < elements(); ++e) {
-    const double sigma_n = density_ * g_n(e) * thickness(e);
-    gamma_dot_[e] = basal_shear_rate(e, sigma_n);
+    const double cap = law_.interface_limit(density_ * g_n(e) * thickness(e));
+    const ShearLayer layer = basal_shear(e, cap);
+    gamma_dot_[e] = layer.basal_rate;
     const double su = strength(law_.strength, xi_[e], gamma_dot_[e]);
-    const double cap = law_.interface_limit(sigma_n);
     tau_[e] = std::min(su, cap);
-    if (su <= cap) xi_[e] += gamma_dot_[e] * dt;
+    if (su <= cap) xi_[e] += layer.mean_rate * dt;
   }
 }
 
-// Driving forces first, then the resistance, which opposes the motion and
-// can at most bring a node to rest within the step: a node at rest stays at
-// rest while its driving force is below its share of the basal strength.
+// Hydrodynamic drag of the ambient water (De Blasio, Engvik, Harbitz &
+// Elverhoi 2004, J. Geophys. Res. 109; as in BingClaw, Kim et al. 2019),
+// opposing the motion, in N/m. Skin friction 0.5 rho_w C_F v|v| acts on
+// each node's share of the upper surface.
+double DamSolver::skin_friction(std::size_t node) const {
+  double surface = 0.0;
+  if (node > 0) surface += 0.5 * length(static_cast<int>(node) - 1);
+  if (node + 1 < s_.size()) surface += 0.5 * length(static_cast<int>(node));
+  return 0.5 * options_.water_density * options_.skin_friction * v_[node] * v_[node] * surface;
+}
+
+// Pressure (form) drag 0.5 rho_w C_P v|v| on the frontal area, the part of
+// the surface that faces the water a node moves into: per node the drop of
+// the surface across it in its direction of motion (the depth-averaged
+// |dh/ds| where it faces the flow), so an advancing end contributes its
+// whole face and a receding one, in its wake, nothing. It is the slide's
+// drag as a whole, as the block models write it, and it decelerates every
+// part of the slide alike: the layer's passive strength, 2 su per unit
+// thickness, cannot take the stagnation pressure as a load on its face
+// nodes (in case 1, 0.5 rho_w v^2 = 6.9 kPa > 2 su = 5 kPa at 3.7 m/s):
+// applied there it piled the front into a 0.64 m head of 4 mm elements
+// within 6 s and cut the step 20-fold (docs/dam.md, "Ambient water").
+double DamSolver::form_drag_deceleration() const {
+  if (options_.pressure_drag == 0.0) return 0.0;
+  double force = 0.0, mass = 0.0;
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    const double behind = i > 0 ? thickness(static_cast<int>(i) - 1) : 0.0;
+    const double ahead = i + 1 < s_.size() ? thickness(static_cast<int>(i)) : 0.0;
+    const double facing = std::max(0.0, v_[i] > 0.0 ? behind - ahead : ahead - behind);
+    force += 0.5 * options_.water_density * options_.pressure_drag * v_[i] * v_[i] * facing;
+    mass += node_mass_[i];
+  }
+  return force / mass;
+}
+
+// Driving forces first, then the resistance (the base's and the water's
+// drag), which opposes the motion and can at most bring a node to rest
+// within the step: a node at rest stays at rest while its driving force is
+// below its share of the basal strength.
 void DamSolver::update_velocities(const std::vector<double>& drive, double dt) {
   std::vector<double> resist(s_.size(), 0.0);
   for (int e = 0; e < elements(); ++e) {
@@ -326,9 +433,12 @@ void DamSolver::update_velocities(const std::vector<double>& drive, double dt) {
     resist[e] += force;
     resist[e + 1] += force;
   }
+  const double form_drag = form_drag_deceleration();
   for (std::size_t i = 0; i < s_.size(); ++i) {
-    const double trial = v_[i] + dt * drive[i] / node_mass_[i];
-    const double stop = dt * resist[i] / node_mass_[i];
+    const double water = skin_friction(i) + form_drag * node_mass_[i];
+    const double inertia = inertia_ * node_mass_[i];
+    const double trial = v_[i] + dt * drive[i] / inertia;
+    const double stop = dt * (resist[i] + water) / inertia;
     v_[i] = std::abs(trial) <= stop ? 0.0 : trial - std::copysign(stop, trial);
   }
 }

@@ -719,13 +719,34 @@ void free_bottom_for_base(const TableReader& boundary_table, BoundarySpec& bound
   boundary.bottom = BoundaryKind::Free;
 }
 
-DamSpec read_dam(TableReader r) {
-  r.check_keys({"shear_rate", "earth_pressure", "elements"});
+// The slide of the depth-averaged model is the first body (docs/dam.md):
+// the thickness t_s of its clay's shear band, 0 where it has none.
+double slide_band_thickness(const Scene& scene) {
+  const MaterialSpec& m = scene.materials[scene.bodies.front().material];
+  return m.model == MaterialModel::Tresca ? m.band_thickness : 0.0;
+}
+
+// The shear rate estimate defaults to the band where the slide's clay has a
+// band thickness, so that t_s means in the DAM what it means in the MPM
+// (docs/dam.md, "Shear strain rate"); without one there is no length for it.
+DamSpec read_dam(TableReader r, const Scene& scene) {
+  r.check_keys({"shear_rate", "earth_pressure", "elements", "water_density", "skin_friction",
+                "pressure_drag", "added_mass"});
   DamSpec dam;
-  if (auto v = r.find("shear_rate")) dam.shear_rate = v->choice(scene_text::kShearRateNames).value;
+  const double band = slide_band_thickness(scene);
+  if (band > 0.0) dam.shear_rate = ShearRateEstimate::Band;
+  if (auto v = r.find("shear_rate")) {
+    dam.shear_rate = v->choice(scene_text::kShearRateNames).value;
+    if (dam.shear_rate == ShearRateEstimate::Band && !(band > 0.0))
+      v->fail("\"band\" needs band_thickness in the material of the first body (the slide)");
+  }
   if (auto v = r.find("earth_pressure"))
     dam.earth_pressure = v->choice(scene_text::kEarthPressureNames).value;
   if (auto v = r.find("elements")) dam.elements = v->integer(at_least(0));
+  if (auto v = r.find("water_density")) dam.water_density = v->number(above(0.0));
+  if (auto v = r.find("skin_friction")) dam.skin_friction = v->number(at_least(0.0));
+  if (auto v = r.find("pressure_drag")) dam.pressure_drag = v->number(at_least(0.0));
+  if (auto v = r.find("added_mass")) dam.added_mass = v->number(at_least(0.0));
   return dam;
 }
 
@@ -792,7 +813,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   scene.materials = read_materials(root);
   scene.bodies = read_bodies(root, scene.materials, scene.grid);
   check_periodic(boundary, scene);
-  scene.dam = read_dam(root.optional_table("dam"));
+  scene.dam = read_dam(root.optional_table("dam"), scene);
   scene.output = read_output(root.optional_table("output"));
   scene.overrides = read_run(root.optional_table("run"));
   return scene;

@@ -47,7 +47,9 @@ inline constexpr Named<InterfaceKind> kInterfaceNames[] = {
 
 inline constexpr Named<Method> kMethodNames[] = {{"mpm", Method::Mpm}, {"dam", Method::Dam}};
 inline constexpr Named<ShearRateEstimate> kShearRateNames[] = {
-    {"linear", ShearRateEstimate::Linear}, {"plug", ShearRateEstimate::Plug}};
+    {"linear", ShearRateEstimate::Linear},
+    {"plug", ShearRateEstimate::Plug},
+    {"band", ShearRateEstimate::Band}};
 inline constexpr Named<EarthPressure> kEarthPressureNames[] = {
     {"rankine", EarthPressure::Rankine}, {"hydrostatic", EarthPressure::Hydrostatic}};
 

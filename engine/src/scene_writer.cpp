@@ -165,7 +165,11 @@ std::string to_toml(const Scene& scene) {
       << "\n"
       << "earth_pressure = "
       << quoted_text(name_of(scene_text::kEarthPressureNames, scene.dam.earth_pressure)) << "\n"
-      << "elements = " << scene.dam.elements << "\n\n";
+      << "elements = " << scene.dam.elements << "\n"
+      << "water_density = " << number(scene.dam.water_density) << "\n"
+      << "skin_friction = " << number(scene.dam.skin_friction) << "\n"
+      << "pressure_drag = " << number(scene.dam.pressure_drag) << "\n"
+      << "added_mass = " << number(scene.dam.added_mass) << "\n\n";
 
   out << "[output]\n"
       << "compress = " << (scene.output.compress ? "true" : "false") << "\n\n"

@@ -24,7 +24,11 @@
 // its shear strain rate estimate (scene.dam, docs/dam.md "Shear strain rate"):
 //   Linear: a linear velocity profile from rest at the base, 2 |v| / h;
 //   Plug:   the basal rate of a Herschel-Bulkley plug flow whose rheology is
-//           the strength law: sheared layer f h with f = 1 - tau_y / tau_b.
+//           the strength law: sheared layer f h with f = 1 - tau_y / tau_b;
+//   Band:   the same layer, never thinner than the clay's band thickness
+//           t_s, its base softening with the layer's mean shear strain.
+// Ambient water, where the scene asks for it, adds drag on the upper surface
+// and on an advancing face and the added mass of the water moved along.
 #include <vector>
 
 #include "runout/base.hpp"
@@ -46,11 +50,22 @@ struct BasalLaw {
   double interface_limit(double normal_stress) const;
 };
 
-// The basal shear strain rate of a steady Herschel-Bulkley plug flow of
+// The layer sheared under a rigid plug at the base of a layer of
 // depth-averaged speed `speed` and thickness h whose rheology is the
 // strength law su(xi, gamma_dot) = tau_y + A (gamma_dot / gamma_dot_ref)^n,
 // with the basal stress capped at `cap` by the interface (docs/dam.md,
-// "Shear strain rate"). Needs a rate term (eta > 0).
+// "Shear strain rate"): as thick as steady plug flow makes it, but never
+// thinner than `band` (nor thicker than h).
+struct ShearLayer {
+  double thickness = 0.0;   // d_s [m]
+  double basal_rate = 0.0;  // at the base, where the stress is: the rate of su [1/s]
+  double mean_rate = 0.0;   // the plug's speed over d_s: the layer's mean shear rate [1/s]
+};
+ShearLayer sheared_layer(const StrengthParams& p, double xi, double speed, double h, double cap,
+                         double band);
+
+// The basal rate of the steady plug flow alone (band 0). Needs a rate term
+// (eta > 0): without one the sheared layer has no thickness.
 double plug_flow_shear_rate(const StrengthParams& p, double xi, double speed, double h,
                             double cap);
 
@@ -104,7 +119,9 @@ class DamSolver {
   double g_n(int e) const { return gravity_scale_ * slopes_[e].g_n; }  // this step's
   double viscous_force(int e) const;
   std::vector<double> driving_forces() const;
-  double basal_shear_rate(int e, double sigma_n) const;
+  ShearLayer basal_shear(int e, double cap) const;
+  double skin_friction(std::size_t node) const;  // [N/m]
+  double form_drag_deceleration() const;          // [m/s2], the same for every node
   void update_basal_state(double dt);
   void update_velocities(const std::vector<double>& drive, double dt);
   void update_layer_stress(double dt);
@@ -117,6 +134,8 @@ class DamSolver {
   DamSpec options_;
   double density_ = 0, courant_ = 0;
   double modulus_ = 0;  // 4 G: the layer's deviator per unit longitudinal strain
+  double band_ = 0;     // t_s of the slide's clay [m], 0 where it has none
+  double inertia_ = 1;  // 1 + C_m rho_w / rho: the added mass of the water moved along
   std::vector<double> s_, v_, node_mass_;
   std::vector<double> volume_, xi_, gamma_dot_, tau_;
   std::vector<double> q_, layer_xi_;

@@ -26,6 +26,6 @@ enum class BaseKind { None, Planar, Polyline };
 // depth-averaged model (docs/dam.md), and the latter's basal shear strain
 // rate estimate.
 enum class Method { Mpm, Dam };
-enum class ShearRateEstimate { Linear, Plug };
+enum class ShearRateEstimate { Linear, Plug, Band };
 
 }  // namespace runout

@@ -121,10 +121,17 @@ enum class EarthPressure { Rankine, Hydrostatic };
 // The depth-averaged model (docs/dam.md); read by it alone.
 struct DamSpec {
   // Linear: 2 |v| / h; Plug: the basal rate of a Herschel-Bulkley plug flow
-  // with the strength law as its rheology (its sheared layer follows from it).
+  // with the strength law as its rheology (its sheared layer follows from it);
+  // Band: the same sheared layer, never thinner than the clay's band
+  // thickness t_s (the parser's default where the slide's material has one).
   ShearRateEstimate shear_rate = ShearRateEstimate::Linear;
   EarthPressure earth_pressure = EarthPressure::Rankine;
   int elements = 0;              // 0: the body's initial length over grid.cell_size
+  // Ambient water (docs/dam.md, "Ambient water"); each coefficient 0: off.
+  double water_density = 1025.0;  // rho_w [kg/m3], sea water
+  double skin_friction = 0.0;     // C_F: drag 0.5 rho_w C_F v|v| on the upper surface
+  double pressure_drag = 0.0;     // C_P: drag 0.5 rho_w C_P v|v| h on an advancing face
+  double added_mass = 0.0;        // C_m: inertia of C_m rho_w per unit volume of slide
 };
 
 struct OutputSpec {
