@@ -168,6 +168,17 @@ TEST(Study, MethodChoiceFollowsTheResolutionOfTheThickness) {
   const MethodChoice c = choose_method(1.0, true, short_thick);
   EXPECT_EQ(c.method, Method::Mpm);
   EXPECT_NE(c.reason.find("under-resolved"), std::string::npos);
+  // A sensitive clay, long and thin all the same: not the DAM.
+  const MethodChoice s = choose_method(1.0, true, SlideSize{120.0, 4.0, 40.0});
+  EXPECT_EQ(s.method, Method::Mpm);
+  EXPECT_NE(s.reason.find("sensitive clay (St = 40)"), std::string::npos) << s.reason;
+  EXPECT_EQ(choose_method(1.0, true, SlideSize{120.0, 4.0, 3.9}).method, Method::Dam);
+}
+
+// The escarpment (St = 40): its sensitivity is the slide's.
+TEST(Study, SlideSizeCarriesTheClaysSensitivity) {
+  const Scene s = load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/escarpment.toml");
+  EXPECT_EQ(slide_size(s).sensitivity, 40.0);
 }
 
 // ---- the commands ----

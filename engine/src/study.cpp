@@ -219,15 +219,16 @@ double finest_cell_for_budget(const CostModel& m, double budget_seconds) {
 }
 
 SlideSize slide_size(const Scene& s) {
-  double area = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  double area = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo, sensitivity = 1;
   for (const BodySpec& b : s.bodies) {
     area += signed_area(b.polygon);
+    sensitivity = std::max(sensitivity, s.materials[b.material].sensitivity);
     for (const Eigen::Vector2d& p : b.polygon) {
       lo = std::min(lo, p.x());
       hi = std::max(hi, p.x());
     }
   }
-  return hi > lo ? SlideSize{hi - lo, area / (hi - lo)} : SlideSize{};
+  return hi > lo ? SlideSize{hi - lo, area / (hi - lo), sensitivity} : SlideSize{};
 }
 
 MethodChoice choose_method(double mpm_cell, bool dam_runs, const SlideSize& size) {
@@ -241,7 +242,8 @@ MethodChoice choose_method(double mpm_cell, bool dam_runs, const SlideSize& size
                   cells, size.mean_thickness, kResolvingCells);
     return {Method::Mpm, buf};
   }
-  if (dam_runs && aspect >= kLongAndThin) {
+  const bool sensitive = size.sensitivity >= kSensitiveClay;
+  if (dam_runs && aspect >= kLongAndThin && !sensitive) {
     std::snprintf(buf, sizeof buf,
                   "MPM would have only %.3g cells across the mean thickness %.3g m (fewer than "
                   "%.0f: the mechanism is not resolved) and the slide is long and thin "
@@ -249,11 +251,20 @@ MethodChoice choose_method(double mpm_cell, bool dam_runs, const SlideSize& size
                   cells, size.mean_thickness, kResolvingCells, aspect);
     return {Method::Dam, buf};
   }
+  char why_not_dam[160];
+  if (!dam_runs)
+    std::snprintf(why_not_dam, sizeof why_not_dam, "cannot run this scene");
+  else if (sensitive)
+    std::snprintf(why_not_dam, sizeof why_not_dam,
+                  "does not suit a sensitive clay (St = %.3g): it fails in blocks and bands that "
+                  "one sheared layer cannot follow",
+                  size.sensitivity);
+  else
+    std::snprintf(why_not_dam, sizeof why_not_dam, "does not suit a slide this short and thick");
   std::snprintf(buf, sizeof buf,
                 "MPM, under-resolved: %.3g cells across the mean thickness %.3g m (fewer than "
                 "%.0f); the depth-averaged model %s",
-                cells, size.mean_thickness, kResolvingCells,
-                dam_runs ? "does not suit a slide this short and thick" : "cannot run this scene");
+                cells, size.mean_thickness, kResolvingCells, why_not_dam);
   return {Method::Mpm, buf};
 }
 

@@ -98,19 +98,27 @@ double finest_cell_for_budget(const CostModel& model, double budget_seconds);
 
 // The slide's size: its extent along x and its mean thickness, the area of
 // its bodies over that extent (in the slope frame of a planar scene, the
-// length along the base and the mean height above it).
+// length along the base and the mean height above it); and the largest
+// sensitivity St of its bodies' clays.
 struct SlideSize {
   double length = 0, mean_thickness = 0;
+  double sensitivity = 1;
 };
 SlideSize slide_size(const Scene& scene);
 
 // Which method a budget allows: MPM when its finest affordable cell puts at
 // least kResolvingCells across the slide's mean thickness (enough for the
 // shear bands and blocks of the mechanism to form over several cells), else
-// the depth-averaged model when it can run the scene and the slide is long
+// the depth-averaged model when it can run the scene, the slide is long
 // and thin (length / thickness at least kLongAndThin, where depth-averaging
-// holds), else MPM, under-resolved, with that said.
+// holds) and its clay is not sensitive (St below kSensitiveClay: a
+// sensitive clay fails retrogressively, in blocks and bands that one
+// sheared layer cannot follow; on case 4 and the escarpment, St = 40, the
+// depth-averaged runout is off the MPM's by a factor of 2.5 to 3.7,
+// docs/dam.md), else MPM, under-resolved, with that said.
 inline constexpr double kResolvingCells = 10.0, kLongAndThin = 5.0;
+// "Sensitive" from St = 4 in Skempton and Northey's (1952) classes.
+inline constexpr double kSensitiveClay = 4.0;
 struct MethodChoice {
   Method method = Method::Mpm;
   std::string reason;
