@@ -9,7 +9,7 @@ with both shear-rate estimates where the clay is rate-dependent, one thread
 each and one at a time (wall times are part of the result). Writes
 DIR/dam_vs_mpm.csv (one row per run), one chart per scene
 (IMAGES/dam_vs_mpm_<scene>.png: runout, toe velocity and length against
-time) and prints the rows of the table in docs/dam.md ("DAM against MPM").
+time) and prints the rows of the table in docs/dam.md ("DAM against the coarse MPM").
 BIN defaults to $RUNOUT_BUILD/engine/runout (RUNOUT_BUILD: <repo>/build).
 """
 import argparse
