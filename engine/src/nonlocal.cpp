@@ -185,21 +185,27 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
                                        int material) {
   const Regularisation& reg = materials_[material];
   const double l = reg.length, reach = kNonlocalCutoff * l;
+  // The box of the material's particles and their images, split over the
+  // threads (min and max reduce in any order to the same bits); each
+  // particle's image is kept at its own index (vol 0: none), so the images
+  // are spread in particle order whatever the threads.
   double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, xmax = -xmin, ymax = -xmin;
-  const auto extend = [&](double x, double y) {
-    xmin = std::min(xmin, x);
-    xmax = std::max(xmax, x);
-    ymin = std::min(ymin, y);
-    ymax = std::max(ymax, y);
-  };
-  images_.clear();
+  images_.assign(P.n, Image{0.0, 0.0, 0.0});
+#pragma omp parallel for schedule(static) reduction(min : xmin, ymin) reduction(max : xmax, ymax) \
+    if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) {
     if (P.material[p] != material) continue;
-    extend(P.x[p], P.y[p]);
-    Image image{0.0, 0.0, P.vol[p]};
+    xmin = std::min(xmin, P.x[p]);
+    xmax = std::max(xmax, P.x[p]);
+    ymin = std::min(ymin, P.y[p]);
+    ymax = std::max(ymax, P.y[p]);
+    Image& image = images_[p];
     if (mirror_point(P.x[p], P.y[p], reach, image.x, image.y)) {
-      extend(image.x, image.y);
-      images_.push_back(image);
+      image.vol = P.vol[p];
+      xmin = std::min(xmin, image.x);
+      xmax = std::max(xmax, image.x);
+      ymin = std::min(ymin, image.y);
+      ymax = std::max(ymax, image.y);
     }
   }
   if (!(xmin <= xmax)) return;
@@ -218,7 +224,8 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
       for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) { volumes_[k] += w * v; });
   }
   for (const Image& image : images_)
-    for_nodes(image.x, image.y, [&](std::size_t k, double w) { volumes_[k] += w * image.vol; });
+    if (image.vol > 0.0)
+      for_nodes(image.x, image.y, [&](std::size_t k, double w) { volumes_[k] += w * image.vol; });
   convolve(increments_, ax_, ay_);
   convolve(volumes_, ax_, ay_);
 

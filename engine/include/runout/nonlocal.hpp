@@ -114,7 +114,7 @@ class NonlocalAverage {
   struct Image {
     double x, y, vol;  // a particle's image in the no-slip base, and its volume
   };
-  std::vector<Image> images_;  // of the material being averaged, in particle order
+  std::vector<Image> images_;  // per particle of the material being averaged; vol 0: none
 };
 
 }  // namespace runout
