@@ -71,16 +71,19 @@ std::string motion_section(const study::History& h) {
                                           {{"toe velocity", h.time, h.toe_velocity}}));
 }
 
-// The values of `columns` named in `names`, for one item.
+// The values of `columns` named in `names`, for one item ("-" for a name
+// no column has, so that a row always fills its header).
 template <class Item>
 std::vector<std::string> cells(const std::vector<analysis::Column<Item>>& columns,
                                const std::vector<std::string>& names, const Item& item) {
   std::vector<std::string> row;
-  for (const std::string& name : names)
-    for (const auto& c : columns)
-      if (name == c.name)
-        row.push_back(c.kind == analysis::Column<Item>::String ? c.text(item)
-                                                                : html::number(c.number(item)));
+  for (const std::string& name : names) {
+    const auto c = std::find_if(columns.begin(), columns.end(),
+                                [&](const auto& column) { return name == column.name; });
+    row.push_back(c == columns.end()                         ? "-"
+                  : c->kind == analysis::Column<Item>::String ? c->text(item)
+                                                              : html::number(c->number(item)));
+  }
   return row;
 }
 
