@@ -10,8 +10,8 @@ folder into OUT_DIR/figures/ (docs/figures.md):
   strain_bands_tNNN.NN.png  plastic shear strain with the shear band
                          skeletons (Runout Shear Bands, each band's dip
                          marked) and the block outlines (Runout Horsts And
-                         Grabens) over it, at each chosen time;
-  strain_bands.png       the same at the last chosen time;
+                         Grabens) over it, at each chosen time, one
+                         colour range and exaggeration for all;
   history.png            runout and toe velocity against time from
                          history.csv, one curve per run (--compare);
   animation/velocity_NNNNN.png   with --animation: every frame's velocity;
@@ -28,11 +28,16 @@ import argparse
 import builtins
 import csv
 import json
+import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from paraview import servermanager, simple  # noqa: E402
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+from matplotlib import pyplot  # noqa: E402
 
 import runout_pv  # noqa: E402
 
@@ -40,9 +45,13 @@ import runout_pv  # noqa: E402
 BAND_RED = [0.85, 0.0, 0.0]
 BLOCK_INK = [0.15, 0.15, 0.15]
 BASE_GREY = [0.45, 0.45, 0.45]
-# One colour per curve (times of the morphology chart, runs of the history).
-CURVES = [[0.27, 0.0, 0.33], [0.23, 0.32, 0.55], [0.13, 0.57, 0.55], [0.37, 0.79, 0.38],
-          [0.99, 0.91, 0.14], [0.85, 0.37, 0.0], [0.8, 0.0, 0.2], [0.4, 0.4, 0.4]]
+# One colour per curve (times of the morphology chart, runs of the history):
+# Okabe and Ito's palette, told apart also by colour-blind readers, with
+# dashes for a second cue.
+CURVES = [[0.0, 0.0, 0.0], [0.90, 0.62, 0.0], [0.34, 0.71, 0.91], [0.0, 0.62, 0.45],
+          [0.84, 0.37, 0.0], [0.0, 0.45, 0.70], [0.80, 0.47, 0.65], [0.6, 0.6, 0.6]]
+DASHES = ["-", "--", "-.", ":"]
+INK_CHART = [0.1, 0.1, 0.1]
 
 
 def arguments():
@@ -53,7 +62,8 @@ def arguments():
     parser.add_argument("--times", help="comma-separated times (s); default: 4 spread "
                         "over the run")
     parser.add_argument("--contour-time", type=float,
-                        help="time (s) of the velocity contours; default: the last chosen")
+                        help="time (s) of the velocity contours; default: the time of the "
+                        "peak toe velocity (history.csv)")
     parser.add_argument("--size", default="1200x600", help="WxH of every PNG")
     parser.add_argument("--animation", action="store_true",
                         help="also every frame's velocity into figures/animation/")
@@ -107,14 +117,50 @@ def exaggeration_for(bounds, size, fill=0.52, share=0.35):
     return builtins.max([f for f in NICE_FACTORS if f <= wanted] or [1])
 
 
+def chart_figure(size, columns=1):
+    """A matplotlib figure of the pictures' size in pixels, with `columns`
+    charts side by side."""
+    figure, axes = pyplot.subplots(1, columns, figsize=(size[0] / 100, size[1] / 100),
+                                   dpi=100, squeeze=False)
+    figure.set_layout_engine("tight")
+    for ax in axes[0]:
+        ax.grid(True, color="0.9")
+    return figure, list(axes[0])
+
+
+def chart_exaggeration(ax, figure):
+    """Sets the chart's aspect to the largest round vertical exaggeration
+    that keeps its data ranges in view, and returns it."""
+    figure.canvas.draw()
+    box = ax.get_window_extent()
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    wanted = (box.height / (y1 - y0)) / (box.width / (x1 - x0))
+    factor = builtins.max([f for f in NICE_FACTORS if f <= wanted] or [1])
+    ax.set_aspect(factor, adjustable="datalim")
+    return factor
+
+
+def read_history(run_dir):
+    """history.csv's rows as dicts of floats, or [] without one."""
+    try:
+        with open(os.path.join(run_dir, "history.csv")) as f:
+            return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    except (OSError, ValueError):
+        return []
+
+
+def peak_toe_time(run_dir):
+    """The time of the run's peak toe velocity (history.csv), or None: the
+    velocity contours are drawn then, while the slide is fastest."""
+    rows = [r for r in read_history(run_dir) if "toe_velocity" in r]
+    return builtins.max(rows, key=lambda r: r["toe_velocity"])["time"] if rows else None
+
+
 def largest_speed(run_dir):
     """The largest particle speed of the run (history.csv's max_speed),
     one colour range for every velocity picture."""
-    try:
-        with open(os.path.join(run_dir, "history.csv")) as f:
-            return builtins.max(float(row["max_speed"]) for row in csv.DictReader(f)) or 1.0
-    except (OSError, KeyError, ValueError):
-        return None
+    rows = [r for r in read_history(run_dir) if "max_speed" in r]
+    return (builtins.max(r["max_speed"] for r in rows) or 1.0) if rows else None
 
 
 class Figures:
@@ -218,8 +264,12 @@ class Figures:
 
     # 1b. Velocity contours at one time, framed on the slide then.
     def velocity_contours(self):
-        t = (self.times[-1] if self.options.contour_time is None
-             else builtins.min(self.steps, key=lambda s: abs(s - self.options.contour_time)))
+        asked = self.options.contour_time
+        if asked is None:
+            asked = peak_toe_time(self.options.out_dir)
+        t = (self.times[-1] if asked is None
+             else builtins.min(self.steps, key=lambda s: abs(s - asked)))
+        self.contour_time = t
         runout_pv.set_time(t)
         self.reader.UpdatePipeline(t)
         bounds = self.reader.GetDataInformation().GetBounds()
@@ -259,91 +309,90 @@ class Figures:
                   f"speed contours every {step:g} m/s at t = {t:g} s")
         self.clear()
 
-    # 2. Morphology evolution.
+    # 2. Morphology evolution, drawn by matplotlib: ParaView's line charts
+    # render every tick label twice, slightly offset, under Xvfb (ghost
+    # marks), and cannot fix a chart's aspect ratio.
     def morphology(self):
-        layout = simple.CreateLayout("morphology")
-        chart = simple.CreateView("XYChartView")
-        simple.AssignViewToLayout(view=chart, layout=layout, hint=0)
-        chart.ChartTitle = "upper surface of the slide (Runout Morphology, Profile)"
-        chart.BottomAxisTitle = "x (m)"
-        chart.LeftAxisTitle = "surface height y (m)"
-        chart.LegendLocation = "TopRight"
         profile = simple.RunoutMorphology(registrationName="morphology", Input=self.reader)
-        factor = self.fix_chart_scale(chart, profile)
-        chart.ChartTitle = ("upper surface of the slide (Runout Morphology, Profile), heights "
-                            f"exaggerated about {factor} x" if factor > 1 else
-                            "upper surface of the slide (Runout Morphology, Profile), true scale")
-        colours = []
-        for i, t in enumerate(self.times):
+        times = sorted(set([self.steps[0]] + self.times))
+        curves = []
+        for t in times:
             at = simple.ForceTime(registrationName=f"profile at {t:g} s",
                                   Input=simple.OutputPort(profile, 0))
             at.ForcedTime = t
             at.IgnorePipelineTime = 1
-            curve = simple.Show(at, chart, "XYChartRepresentation")
-            curve.UseIndexForXAxis = 0
-            curve.XArrayName = "Points_X"
-            curve.SeriesVisibility = ["Points_Y"]
+            data = servermanager.Fetch(at)
+            points = sorted(data.GetPoint(i)[:2] for i in range(data.GetNumberOfPoints()))
+            curves.append((t, [p[0] for p in points], [p[1] for p in points]))
+        figure, axes = chart_figure(self.size)
+        ax = axes[0]
+        xs = [x for _, c, _ in curves for x in c] or [0.0, 1.0]
+        ys = [y for _, _, c in curves for y in c] or [0.0, 1.0]
+        ax.set_xlim(builtins.min(xs) - 5.0, builtins.max(xs) + 5.0)
+        ax.set_ylim(builtins.min(0.0, builtins.min(ys)), 1.15 * builtins.max(ys))
+        factor = chart_exaggeration(ax, figure)
+        colours = []
+        for i, (t, x, y) in enumerate(curves):
+            # Distinct colours and dashes, the earlier times drawn wider
+            # under the later ones, so that no profile hides another.
             colour = CURVES[i % len(CURVES)]
-            curve.SeriesColor = ["Points_Y"] + [str(c) for c in colour]
-            curve.SeriesLabel = ["Points_Y", f"t = {t:g} s"]
-            curve.SeriesLineThickness = ["Points_Y", "3"]
+            ax.plot(x, y, color=colour, linestyle=DASHES[i % len(DASHES)],
+                    linewidth=builtins.max(1.5, 3.5 - 0.5 * i), label=f"t = {t:g} s")
             colours.append(rgb255(colour))
-        self.save(layout, "morphology.png", colours[-2:], "surface profiles at "
-                  + ", ".join(f"{t:g}" for t in self.times) + " s")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("surface height y (m)")
+        ax.set_title("upper surface of the slide (Runout Morphology, Profile), "
+                     + (f"heights exaggerated {factor} x" if factor > 1 else "true scale"))
+        ax.legend(loc="upper right")
+        self.save_chart(figure, "morphology.png", colours, "surface profiles at "
+                        + ", ".join(f"{t:g}" for t, _, _ in curves) + " s")
         self.clear()
 
-    def fix_chart_scale(self, chart, profile):
-        """Axis ranges that give the chart a round vertical exaggeration
-        (about: the plot area is the picture less its margins, estimated),
-        which it returns. A chart scales each axis to its data, which makes
-        an exaggeration of its own, unstated."""
-        lo, hi = [1e300, 1e300], [-1e300, -1e300]
-        for t in self.times:
-            profile.UpdatePipeline(t)
-            b = profile.GetDataInformation(0).GetBounds()
-            if b[0] <= b[1]:
-                lo = [builtins.min(lo[0], b[0]), builtins.min(lo[1], b[2])]
-                hi = [builtins.max(hi[0], b[1]), builtins.max(hi[1], b[3])]
-        if not (lo[0] < hi[0] and lo[1] < hi[1]):
-            return 1
-        width, height = self.size[0] - 90, self.size[1] - 90  # the plot area, about
-        x_range = hi[0] - lo[0] + 10.0
-        y_low = builtins.min(0.0, lo[1])
-        wanted = height / width * x_range / (1.15 * (hi[1] - y_low))
-        factor = builtins.max([f for f in NICE_FACTORS if f <= wanted] or [1])
-        chart.BottomAxisUseCustomRange = 1
-        chart.BottomAxisRangeMinimum = lo[0] - 5.0
-        chart.BottomAxisRangeMaximum = hi[0] + 5.0
-        chart.LeftAxisUseCustomRange = 1
-        chart.LeftAxisRangeMinimum = y_low
-        chart.LeftAxisRangeMaximum = y_low + height / width * x_range / factor
-        return factor
+    def save_chart(self, figure, name, colours, what):
+        path = os.path.join(self.folder, name)
+        figure.savefig(path, dpi=100)
+        pyplot.close(figure)
+        self.manifest.append({"png": name, "size": self.size, "colours": colours,
+                              "what": what})
+        print(path)
 
     # 3. Plastic shear strain, shear bands, horsts and grabens, at each
-    # chosen time (their evolution), the last also as strain_bands.png.
+    # chosen time (their evolution): one camera, one exaggeration and one
+    # colour range for the series, so that its frames compare.
     def strain_bands(self):
+        self.bounds = self.run_bounds()
+        self.factor = exaggeration_for(self.bounds, self.size)
+        top = self.largest_strain()
         for t in self.times:
             runout_pv.set_time(t)
-            bounds = self.reader.GetDataInformation().GetBounds()
-            self.factor = exaggeration_for(bounds, self.size)
             layout = simple.CreateLayout("strain bands")
             view = runout_pv.render_view()
             simple.AssignViewToLayout(view=view, layout=layout, hint=0)
             bands, _, _, lut = build_strain_bands(self.reader, view,
-                                                  [1.0, float(self.factor), 1.0])
+                                                  [1.0, float(self.factor), 1.0],
+                                                  data_range=[0.0, top])
             self.time_label(view, t)
             layout.SetSize(*self.size)
-            simple.Render(view)
-            runout_pv.fit_camera(view, bounds, exaggeration=[1.0, self.factor, 1.0])
+            self.fit_to_run(view)
             # The bands' red only where the frame has bands (not before the
             # slide fails).
             colours = map_ends(lut) + ([rgb255(BAND_RED)] if self.mark_dips(bands, view, t)
                                        else [])
-            what = f"plastic shear strain, shear bands (dips marked) and blocks at t = {t:g} s"
-            self.save(layout, f"strain_bands_t{t:07.2f}.png", colours, what)
-            if t == self.times[-1]:
-                self.save(layout, "strain_bands.png", colours, what)
+            self.save(layout, f"strain_bands_t{t:07.2f}.png", colours,
+                      f"plastic shear strain, shear bands (dips marked) and blocks at t = {t:g} s")
             self.clear()
+
+    def largest_strain(self):
+        """The largest plastic shear strain at the chosen times, rounded up
+        to a round number: the series' one colour range."""
+        top = 0.0
+        for t in self.times:
+            self.reader.UpdatePipeline(t)
+            array = self.reader.PointData["plastic_shear_strain"]
+            if array is not None:
+                top = builtins.max(top, array.GetRange()[1])
+        step = 10 ** math.floor(math.log10(top)) / 2 if top > 0 else 1.0
+        return math.ceil(top / step) * step
 
     def mark_dips(self, bands, view, t):
         """Each band's dip (degrees, docs/filters.md: the true dip, not the
@@ -366,52 +415,46 @@ class Figures:
             display.Ambient, display.Diffuse = 1.0, 0.0
         return table.GetNumberOfRows()
 
-    # 4. Runout and toe velocity against time.
+    # 4. Runout and toe velocity against time (matplotlib, as figure 2),
+    # the peak toe velocity of the first run marked: the contours' time.
     def history(self):
         runs = [self.options.out_dir] + list(self.options.compare)
         labels = (self.options.labels.split(",") if self.options.labels
                   else [os.path.basename(os.path.normpath(r)) for r in runs])
         if len(labels) != len(runs):
             raise SystemExit(f"--labels: {len(labels)} labels for {len(runs)} runs")
-        layout = simple.CreateLayout("history")
-        charts = []
-        for hint, (column, axis) in enumerate((("runout", "runout (m)"),
-                                               ("toe_velocity", "toe velocity (m/s)"))):
-            chart = simple.CreateView("XYChartView")
-            chart.LeftAxisTitle = axis
-            chart.BottomAxisTitle = "time (s)"
-            chart.LegendLocation = "TopLeft" if column == "runout" else "TopRight"
-            charts.append((chart, column))
-        # Side by side: stacked, each chart had half the height and its
-        # time axis's title ran into its tick labels.
-        layout.SplitHorizontal(0, 0.5)
-        simple.AssignViewToLayout(view=charts[0][0], layout=layout, hint=1)
-        simple.AssignViewToLayout(view=charts[1][0], layout=layout, hint=2)
+        figure, axes = chart_figure(self.size, 2)
         colours = []
         for i, (run, label) in enumerate(zip(runs, labels)):
-            table = simple.CSVReader(registrationName=f"history {label}",
-                                     FileName=[os.path.join(run, "history.csv")])
-            colour = CURVES[(2 * i + 1) % len(CURVES)] if len(runs) > 1 else [0.8, 0.0, 0.2]
+            rows = read_history(run)
+            colour = CURVES[(i + 1) % len(CURVES)]
             colours.append(rgb255(colour))
-            for chart, column in charts:
-                curve = simple.Show(table, chart, "XYChartRepresentation")
-                curve.UseIndexForXAxis = 0
-                curve.XArrayName = "time"
-                curve.SeriesVisibility = [column]
-                curve.SeriesColor = [column] + [str(c) for c in colour]
-                curve.SeriesLabel = [column, label]
-                curve.SeriesLineThickness = [column, "3"]
-        self.save(layout, "history.png", colours,
-                  "runout and toe velocity against time: " + ", ".join(labels))
-        self.clear()
+            time = [r["time"] for r in rows]
+            for ax, column in zip(axes, ("runout", "toe_velocity")):
+                ax.plot(time, [r[column] for r in rows], color=colour,
+                        linestyle=DASHES[i % len(DASHES)], linewidth=2.5, label=label)
+        peak = peak_toe_time(runs[0])
+        if peak is not None:
+            top = builtins.max(r["toe_velocity"] for r in read_history(runs[0]))
+            axes[1].plot([peak], [top], "o", color=INK_CHART)
+            axes[1].annotate(f"peak {top:.2g} m/s at {peak:g} s", (peak, top),
+                             xytext=(8, -16), textcoords="offset points")
+        for ax, title in zip(axes, ("runout (m)", "toe velocity (m/s)")):
+            ax.set_xlabel("time (s)")
+            ax.set_ylabel(title)
+            ax.legend(loc="lower right" if title.startswith("runout") else "upper right")
+        self.save_chart(figure, "history.png", colours,
+                        "runout and toe velocity against time: " + ", ".join(labels))
 
     def write_manifest(self):
         with open(os.path.join(self.folder, "figures.json"), "w") as f:
             json.dump({"run": os.path.abspath(self.options.out_dir), "times": self.times,
+                       "contour_time": self.contour_time,
+                       "peak_toe_velocity_time": peak_toe_time(self.options.out_dir),
                        "figures": self.manifest}, f, indent=1)
 
 
-def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION):
+def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION, data_range=None):
     """Figure 3's pipeline in a view: the particles coloured by their
     plastic shear strain, the base, the shear band skeletons (red) and the
     block outlines (black) over them (also the pipeline of
@@ -424,7 +467,7 @@ def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION):
     particles = runout_pv.show(reader, view, Representation="Points", PointSize=4.0,
                                scale=scale)
     lut = runout_pv.colour_by(particles, view, "plastic_shear_strain",
-                              "plastic shear strain")
+                              "plastic shear strain", data_range=data_range)
     runout_pv.show_lines(blocks, view, BLOCK_INK, width=2.0, scale=scale)
     runout_pv.show_lines(bands, view, BAND_RED, z=2.0, width=3.0, scale=scale)
     return bands, blocks, base, lut
