@@ -103,6 +103,9 @@ def chosen_times(option, steps):
 
 
 NICE_FACTORS = (1, 2, 3, 5, 10, 20, 30, 50, 100)
+# Pixels above the slide (the caption and the colour bar) and below it (the
+# scale bar) in a cropped particle picture.
+MARGIN_TOP, MARGIN_BOTTOM = 110, 50
 
 
 def exaggeration_for(bounds, size, fill=0.52, share=0.35):
@@ -140,6 +143,26 @@ def chart_exaggeration(ax, figure):
     return factor
 
 
+def round_up(value):
+    """value rounded up to a multiple of half its power of ten (4.37 to
+    4.5, 6.55 to 7): a colour range whose end labels read like the bar's."""
+    if value <= 0:
+        return 1.0
+    step = 10 ** math.floor(math.log10(value)) / 2
+    return math.ceil(value / step - 1e-9) * step
+
+
+def particle_domain(reader):
+    """The particles as a filled domain: a triangulation of them (Delaunay
+    2D, no triangle wider than 4 particle spacings, so no skin over the
+    gaps between blocks) that carries their arrays between them. Points
+    leave gaps or overlap once heights are exaggerated."""
+    spacing = reader.FieldData["particle_spacing"].GetRange()[0]
+    mesh = simple.Delaunay2D(registrationName="particles triangulated", Input=reader)
+    mesh.Alpha = 4.0 * spacing
+    return mesh
+
+
 def read_history(run_dir):
     """history.csv's rows as dicts of floats, or [] without one."""
     try:
@@ -175,12 +198,14 @@ class Figures:
         self.steps = list(self.reader.TimestepValues) or [0.0]
         self.times = chosen_times(options.times, self.steps)
 
-    def save(self, layout, name, colours, what):
+    def save(self, layout, name, colours, what, size=None):
+        """A screenshot of the layout, `size` pixels (default --size)."""
+        size = size or self.size
         path = os.path.join(self.folder, name)
         os.makedirs(os.path.dirname(path), exist_ok=True)
-        layout.SetSize(*self.size)
-        simple.SaveScreenshot(path, layout, ImageResolution=self.size, CompressionLevel="9")
-        self.manifest.append({"png": os.path.relpath(path, self.folder), "size": self.size,
+        layout.SetSize(*size)
+        simple.SaveScreenshot(path, layout, ImageResolution=size, CompressionLevel="9")
+        self.manifest.append({"png": os.path.relpath(path, self.folder), "size": size,
                               "colours": colours, "what": what})
         print(path)
         return path
@@ -211,21 +236,63 @@ class Figures:
         scale = [1.0, float(self.factor), 1.0]
         base = runout_pv.base_line(self.reader)
         runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0, scale=scale)
-        particles = runout_pv.show(self.reader, view, Representation="Points", PointSize=4.0,
-                                   scale=scale)
+        particles = runout_pv.show(particle_domain(self.reader), view, scale=scale)
         speed = largest_speed(self.options.out_dir)
         lut = runout_pv.colour_by(particles, view, "velocity", "velocity magnitude (m/s)",
                             preset="Turbo", component="Magnitude",
-                            data_range=None if speed is None else [0.0, speed])
+                            data_range=None if speed is None else [0.0, round_up(speed)])
         text, label = self.time_label(view)
         label.FontSize = 16
-        layout.SetSize(*self.size)
         return layout, view, text, map_ends(lut)
 
-    def fit_to_run(self, view):
-        """The camera on the particles of the whole run (run_bounds)."""
-        simple.Render(view)
-        runout_pv.fit_camera(view, self.bounds, exaggeration=[1.0, self.factor, 1.0], fill=0.52)
+    def fit_to_run(self, view, layout):
+        """The camera and the cropped picture on the particles of the
+        whole run (run_bounds)."""
+        return self.frame(view, layout, self.bounds)
+
+    def frame(self, view, layout, bounds, fill=0.52):
+        """Crops the picture to the slide (bounds, heights exaggerated by
+        self.factor): the asked width, the height the slide needs with the
+        caption and colour bar above it and a scale bar below, at most the
+        asked height; sets a parallel camera on it and draws the scale bar.
+        Returns the picture's size."""
+        width = self.size[0]
+        length, height = bounds[1] - bounds[0], self.factor * (bounds[3] - bounds[2])
+        margins = MARGIN_TOP + MARGIN_BOTTOM
+        per_metre = builtins.min(width / (2 * fill * length),
+                                 (self.size[1] - margins) / builtins.max(height, 1e-9))
+        size = [width, int(builtins.min(self.size[1], height * per_metre + margins))]
+        layout.SetSize(*size)
+        simple.Render(view)  # the first render resets the camera: before setting it
+        bottom = self.factor * bounds[2] - MARGIN_BOTTOM / per_metre
+        centre = [(bounds[0] + bounds[1]) / 2, bottom + size[1] / 2 / per_metre, 0.0]
+        view.CameraParallelProjection = 1
+        view.CameraFocalPoint = centre
+        view.CameraPosition = [centre[0], centre[1], 100.0]
+        view.CameraViewUp = [0.0, 1.0, 0.0]
+        view.CameraParallelScale = size[1] / 2 / per_metre
+        self.per_metre = per_metre
+        # A scale bar in the lower left corner, about a fifth of the width.
+        seen = width / per_metre
+        bar = builtins.max(f * 10 ** k for k in range(-2, 5) for f in (1, 2, 5)
+                           if f * 10 ** k <= seen / 5)
+        x0, y0 = centre[0] - seen / 2 + 20 / per_metre, bottom + 24 / per_metre
+        line = simple.Line(registrationName="scale bar", Point1=[x0, y0, 0.0],
+                           Point2=[x0 + bar, y0, 0.0])
+        runout_pv.show_lines(line, view, runout_pv.INK, z=4.0, width=4.0, scale=[1, 1, 1])
+        self.text_at(view, f"{bar:g} m", x0 + bar + 8 / per_metre, y0 - 6 / per_metre,
+                     14 / per_metre, runout_pv.INK)
+        return size
+
+    def text_at(self, view, text, x, y, height, colour):
+        """3D text `height` high (world units) at (x, y), unlit."""
+        mark = simple.a3DText(registrationName=f"text {text}", Text=text)
+        display = simple.Show(mark, view)
+        display.Scale = [height, height, 1.0]
+        display.Position = [x, y, 4.0]
+        display.AmbientColor = display.DiffuseColor = colour
+        display.Ambient, display.Diffuse = 1.0, 0.0
+        return display
 
     def time_label(self, view, t=None):
         """The caption source and its display in the view's upper left
@@ -244,22 +311,22 @@ class Figures:
 
     def velocity(self):
         layout, view, text, ends = self.velocity_view("velocity")
-        self.fit_to_run(view)
+        size = self.fit_to_run(view, layout)
         for t in self.times:
             runout_pv.set_time(t)
             text.Text = self.label(t)
             self.save(layout, f"velocity_t{t:07.2f}.png", ends,
-                      f"velocity magnitude at t = {t:g} s")
+                      f"velocity magnitude at t = {t:g} s", size)
         self.clear()
 
     def animation(self):
         layout, view, text, ends = self.velocity_view("animation")
-        self.fit_to_run(view)
+        size = self.fit_to_run(view, layout)
         for i, t in enumerate(self.steps):
             runout_pv.set_time(t)
             text.Text = self.label(t)
             self.save(layout, os.path.join("animation", f"velocity_{i:05d}.png"), ends,
-                      f"animation frame {i}, t = {t:g} s")
+                      f"animation frame {i}, t = {t:g} s", size)
         self.clear()
 
     # 1b. Velocity contours at one time, framed on the slide then.
@@ -278,11 +345,7 @@ class Figures:
         layout = simple.CreateLayout("velocity contours")
         view = runout_pv.render_view()
         simple.AssignViewToLayout(view=view, layout=layout, hint=0)
-        spacing = self.reader.FieldData["particle_spacing"].GetRange()[0]
-        # A triangulation of the particles (no triangle longer than a few
-        # spacings, so no skin over gaps) carries the speed between them.
-        mesh = simple.Delaunay2D(registrationName="particles triangulated", Input=self.reader)
-        mesh.Alpha = 2.5 * spacing
+        mesh = particle_domain(self.reader)
         speed = simple.Calculator(registrationName="speed", Input=mesh)
         speed.ResultArrayName = "speed"
         speed.Function = "mag(velocity)"
@@ -295,18 +358,17 @@ class Figures:
         lines.Isosurfaces = levels
         base = runout_pv.base_line(self.reader)
         runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0, scale=scale)
-        runout_pv.show(self.reader, view, z=-0.5, scale=scale, Representation="Points",
-                       PointSize=3.0, ColorArrayName=["POINTS", ""],
-                       AmbientColor=[0.8, 0.8, 0.8], DiffuseColor=[0.8, 0.8, 0.8])
+        runout_pv.show(mesh, view, z=-0.5, scale=scale, ColorArrayName=["POINTS", ""],
+                       AmbientColor=[0.85, 0.85, 0.85], DiffuseColor=[0.85, 0.85, 0.85],
+                       Ambient=1.0, Diffuse=0.0)
         curves = runout_pv.show(lines, view, z=1.0, scale=scale, LineWidth=2.5)
         lut = runout_pv.colour_by(curves, view, "speed", "speed (m/s), contours every "
-                                  f"{step:g} m/s", preset="Turbo", data_range=[0.0, top])
+                                  f"{step:g} m/s", preset="Turbo",
+                                  data_range=[0.0, step * math.ceil(top / step)])
         self.time_label(view, t)
-        layout.SetSize(*self.size)
-        simple.Render(view)
-        runout_pv.fit_camera(view, bounds, exaggeration=scale)
+        size = self.frame(view, layout, bounds)
         self.save(layout, f"velocity_contours_t{t:07.2f}.png", map_ends(lut),
-                  f"speed contours every {step:g} m/s at t = {t:g} s")
+                  f"speed contours every {step:g} m/s at t = {t:g} s", size)
         self.clear()
 
     # 2. Morphology evolution, drawn by matplotlib: ParaView's line charts
@@ -370,16 +432,16 @@ class Figures:
             simple.AssignViewToLayout(view=view, layout=layout, hint=0)
             bands, _, _, lut = build_strain_bands(self.reader, view,
                                                   [1.0, float(self.factor), 1.0],
-                                                  data_range=[0.0, top])
-            self.time_label(view, t)
-            layout.SetSize(*self.size)
-            self.fit_to_run(view)
+                                                  data_range=[0.0, top], filled=True)
+            self.caption = self.time_label(view, t)[0]
+            size = self.fit_to_run(view, layout)
             # The bands' red only where the frame has bands (not before the
             # slide fails).
             colours = map_ends(lut) + ([rgb255(BAND_RED)] if self.mark_dips(bands, view, t)
                                        else [])
             self.save(layout, f"strain_bands_t{t:07.2f}.png", colours,
-                      f"plastic shear strain, shear bands (dips marked) and blocks at t = {t:g} s")
+                      f"plastic shear strain, shear bands (dips marked) and blocks at t = {t:g} s",
+                      size)
             self.clear()
 
     def largest_strain(self):
@@ -391,29 +453,38 @@ class Figures:
             array = self.reader.PointData["plastic_shear_strain"]
             if array is not None:
                 top = builtins.max(top, array.GetRange()[1])
-        step = 10 ** math.floor(math.log10(top)) / 2 if top > 0 else 1.0
-        return math.ceil(top / step) * step
+        return round_up(top)
 
     def mark_dips(self, bands, view, t):
-        """Each band's dip (degrees, docs/filters.md: the true dip, not the
-        exaggerated picture's) in red beside its centroid, in 3D text about
-        14 pixels high. Returns the number of bands."""
+        """The dips (degrees, docs/filters.md: the true dip, not the
+        exaggerated picture's) in red beside the bands' centroids, 14
+        pixels high: the longest bands first, a band whose label would
+        overlap one already placed left unlabelled and counted in the
+        caption. Returns the number of bands."""
         bands.UpdatePipeline(t)
         table = servermanager.Fetch(bands, idx=1)
         names = [table.GetColumnName(c) for c in range(table.GetNumberOfColumns())]
         if "dip" not in names:
             return 0
-        column = {name: table.GetColumnByName(name) for name in ("centroid_x", "centroid_y", "dip")}
-        height = 14.0 / self.size[1] * 2 * view.CameraParallelScale
-        for row in range(table.GetNumberOfRows()):
-            x, y, dip = (column[n].GetValue(row) for n in ("centroid_x", "centroid_y", "dip"))
-            mark = simple.a3DText(registrationName=f"dip {row}", Text=f"{dip:.0f} deg")
-            display = simple.Show(mark, view)
-            display.Scale = [height, height, 1.0]
-            display.Position = [x + 0.5 * height, self.factor * y + 0.5 * height, 3.0]
-            display.AmbientColor = display.DiffuseColor = BAND_RED
-            display.Ambient, display.Diffuse = 1.0, 0.0
-        return table.GetNumberOfRows()
+        rows = [{n: table.GetColumnByName(n).GetValue(r) for n in names
+                 if n in ("centroid_x", "centroid_y", "dip", "length")}
+                for r in range(table.GetNumberOfRows())]
+        rows.sort(key=lambda r: -r.get("length", 0.0))
+        height = 14.0 / self.per_metre
+        placed = []
+        for row in rows:
+            x = row["centroid_x"] + 0.5 * height
+            y = self.factor * row["centroid_y"] + 0.5 * height
+            # builtins': pvbatch's namespace has VTK's array any and abs.
+            if builtins.any(builtins.abs(x - px) < 5 * height
+                            and builtins.abs(y - py) < 1.5 * height for px, py in placed):
+                continue
+            placed.append((x, y))
+            self.text_at(view, f"{row['dip']:.0f} deg", x, y, height, BAND_RED)
+        if len(placed) < len(rows):
+            self.caption.Text += (f"; dips of the {len(placed)} longest of "
+                                  f"{len(rows)} shear bands marked")
+        return len(rows)
 
     # 4. Runout and toe velocity against time (matplotlib, as figure 2),
     # the peak toe velocity of the first run marked: the contours' time.
@@ -454,7 +525,8 @@ class Figures:
                        "figures": self.manifest}, f, indent=1)
 
 
-def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION, data_range=None):
+def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION, data_range=None,
+                       filled=False):
     """Figure 3's pipeline in a view: the particles coloured by their
     plastic shear strain, the base, the shear band skeletons (red) and the
     block outlines (black) over them (also the pipeline of
@@ -464,8 +536,9 @@ def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION, data_range=No
                                            Input=reader)
     base = runout_pv.base_line(reader)
     runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0, scale=scale)
-    particles = runout_pv.show(reader, view, Representation="Points", PointSize=4.0,
-                               scale=scale)
+    particles = (runout_pv.show(particle_domain(reader), view, scale=scale) if filled else
+                 runout_pv.show(reader, view, Representation="Points", PointSize=4.0,
+                                scale=scale))
     lut = runout_pv.colour_by(particles, view, "plastic_shear_strain",
                               "plastic shear strain", data_range=data_range)
     runout_pv.show_lines(blocks, view, BLOCK_INK, width=2.0, scale=scale)
