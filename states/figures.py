@@ -424,7 +424,7 @@ class Figures:
     def strain_bands(self):
         self.bounds = self.run_bounds()
         self.factor = exaggeration_for(self.bounds, self.size)
-        top = self.largest_strain()
+        strain, log = self.strain_range()
         for t in self.times:
             runout_pv.set_time(t)
             layout = simple.CreateLayout("strain bands")
@@ -432,7 +432,7 @@ class Figures:
             simple.AssignViewToLayout(view=view, layout=layout, hint=0)
             bands, _, _, lut = build_strain_bands(self.reader, view,
                                                   [1.0, float(self.factor), 1.0],
-                                                  data_range=[0.0, top], filled=True)
+                                                  data_range=strain, filled=True, log=log)
             self.caption = self.time_label(view, t)[0]
             size = self.fit_to_run(view, layout)
             # The bands' red only where the frame has bands (not before the
@@ -444,16 +444,29 @@ class Figures:
                       size)
             self.clear()
 
-    def largest_strain(self):
-        """The largest plastic shear strain at the chosen times, rounded up
-        to a round number: the series' one colour range."""
-        top = 0.0
+    def strain_range(self):
+        """The series' one colour range of the plastic shear strain at the
+        chosen times: 0 to its 99th percentile rounded up (the largest
+        value is a few particles'), or, where the strain spans orders of
+        magnitude (99th percentile above 5 medians: case 4, 0 to 500),
+        three decades below a power of ten on a log scale. Returns (range,
+        log)."""
+        import numpy
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        values = []
         for t in self.times:
             self.reader.UpdatePipeline(t)
-            array = self.reader.PointData["plastic_shear_strain"]
+            array = servermanager.Fetch(self.reader).GetPointData().GetArray(
+                "plastic_shear_strain")
             if array is not None:
-                top = builtins.max(top, array.GetRange()[1])
-        return round_up(top)
+                values.append(vtk_to_numpy(array))
+        if not values:
+            return [0.0, 1.0], False
+        middle, top = numpy.percentile(numpy.concatenate(values), [50, 99])
+        if top > 5 * middle and top > 0:
+            decade = math.ceil(math.log10(top))
+            return [10.0 ** (decade - 4), 10.0 ** decade], True
+        return [0.0, round_up(float(top))], False
 
     def mark_dips(self, bands, view, t):
         """The dips (degrees, docs/filters.md: the true dip, not the
@@ -526,7 +539,7 @@ class Figures:
 
 
 def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION, data_range=None,
-                       filled=False):
+                       filled=False, log=False):
     """Figure 3's pipeline in a view: the particles coloured by their
     plastic shear strain, the base, the shear band skeletons (red) and the
     block outlines (black) over them (also the pipeline of
@@ -540,10 +553,48 @@ def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION, data_range=No
                  runout_pv.show(reader, view, Representation="Points", PointSize=4.0,
                                 scale=scale))
     lut = runout_pv.colour_by(particles, view, "plastic_shear_strain",
-                              "plastic shear strain", data_range=data_range)
+                              "plastic shear strain" + (", log scale" if log else ""),
+                              data_range=data_range)
+    if log:
+        lut.UseLogScale = 1
+        # One label a decade: the automatic ones crowd on a log scale.
+        bar = simple.GetScalarBar(lut, view)
+        bar.UseCustomLabels, bar.AddRangeLabels, bar.LabelFormat = 1, 0, "%g"
+        bar.CustomLabels = [10.0 ** k for k in range(round(math.log10(data_range[0])),
+                                                     round(math.log10(data_range[1])) + 1)]
+    if filled:
+        fill_blocks(blocks, view, scale)
     runout_pv.show_lines(blocks, view, BLOCK_INK, width=2.0, scale=scale)
     runout_pv.show_lines(bands, view, BAND_RED, z=2.0, width=3.0, scale=scale)
     return bands, blocks, base, lut
+
+
+# The fill of each kind of block (Runout Horsts And Grabens' type_code).
+BLOCK_TYPES = (("block", [0.6, 0.6, 0.6]), ("horst", [0.0, 0.45, 0.70]),
+               ("graben", [0.90, 0.62, 0.0]))
+
+
+def fill_blocks(blocks, view, scale):
+    """The blocks filled by their type, translucent over the strain, with a
+    legend in the lower right corner. Triangulated: the blocks are concave
+    polygons, which VTK would fill as fans."""
+    triangles = simple.Triangulate(registrationName="blocks filled", Input=blocks)
+    display = runout_pv.show(triangles, view, z=0.5, scale=scale, Opacity=0.35)
+    simple.ColorBy(display, ("CELLS", "type_code"))
+    lut = simple.GetColorTransferFunction("type_code")
+    lut.InterpretValuesAsCategories = 1
+    lut.Annotations = [v for code, (name, _) in enumerate(BLOCK_TYPES)
+                       for v in (str(code), name)]
+    lut.IndexedColors = [c for _, colour in BLOCK_TYPES for c in colour]
+    display.LookupTable = lut
+    display.Ambient, display.Diffuse = 1.0, 0.0
+    display.SetScalarBarVisibility(view, True)
+    bar = simple.GetScalarBar(lut, view)
+    bar.Title = bar.ComponentTitle = ""
+    bar.TitleColor = bar.LabelColor = runout_pv.INK
+    bar.WindowLocation = "Lower Right Corner"
+    bar.Orientation = "Horizontal"
+    return display
 
 
 def main():
