@@ -4,9 +4,9 @@ folder into OUT_DIR/figures/ (docs/figures.md):
   velocity_tNNN.NN.png   velocity magnitude on the particles at each chosen
                          time, one colour range for all, the base drawn;
   velocity_contours_tNNN.NN.png  speed contours at one time (--contour-time,
-                         default the last chosen), framed on the slide then;
+                         default the peak toe velocity's), framed on the slide then;
   morphology.png         the slide's upper surface (Runout Morphology,
-                         Profile port) at the chosen times in one chart;
+                         Profile port) at t = 0 and the chosen times in one chart;
   strain_bands_tNNN.NN.png  plastic shear strain with the shear band
                          skeletons (Runout Shear Bands, each band's dip
                          marked) and the block outlines (Runout Horsts And
