@@ -163,6 +163,21 @@ def particle_domain(reader):
     return mesh
 
 
+def show_filled(reader, view, scale, point_size, array, title, **colours):
+    """The particles as a filled domain (particle_domain) over the
+    particles as points `point_size` pixels wide, both coloured by `array`
+    (colour_by's options): the points round off the domain's edges, where
+    the triangulation leaves notches. Returns the colour map."""
+    points = runout_pv.show(reader, view, z=-0.2, scale=scale, Representation="Points",
+                            PointSize=point_size)
+    domain = runout_pv.show(particle_domain(reader), view, scale=scale)
+    lut = runout_pv.colour_by(domain, view, array, title, **colours)
+    points.ColorArrayName = [domain.ColorArrayName[0], domain.ColorArrayName[1]]
+    points.LookupTable = lut
+    points.Ambient, points.Diffuse = 1.0, 0.0
+    return lut
+
+
 def read_history(run_dir):
     """history.csv's rows as dicts of floats, or [] without one."""
     try:
@@ -236,14 +251,20 @@ class Figures:
         scale = [1.0, float(self.factor), 1.0]
         base = runout_pv.base_line(self.reader)
         runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0, scale=scale)
-        particles = runout_pv.show(particle_domain(self.reader), view, scale=scale)
         speed = largest_speed(self.options.out_dir)
-        lut = runout_pv.colour_by(particles, view, "velocity", "velocity magnitude (m/s)",
-                            preset="Turbo", component="Magnitude",
-                            data_range=None if speed is None else [0.0, round_up(speed)])
+        lut = show_filled(self.reader, view, scale, self.point_size(), "velocity",
+                          "velocity magnitude (m/s)", preset="Turbo", component="Magnitude",
+                          data_range=None if speed is None else [0.0, round_up(speed)])
         text, label = self.time_label(view)
         label.FontSize = 16
         return layout, view, text, map_ends(lut)
+
+    def point_size(self, fill=0.52):
+        """About 2.5 particle spacings in pixels (2 to 16) in a picture of
+        the run's bounds (frame's scale)."""
+        spacing = self.reader.FieldData["particle_spacing"].GetRange()[0]
+        per_metre = self.size[0] / (2 * fill * (self.bounds[1] - self.bounds[0]))
+        return builtins.min(16.0, builtins.max(2.0, 2.5 * spacing * per_metre))
 
     def fit_to_run(self, view, layout):
         """The camera and the cropped picture on the particles of the
@@ -432,7 +453,8 @@ class Figures:
             simple.AssignViewToLayout(view=view, layout=layout, hint=0)
             bands, _, _, lut = build_strain_bands(self.reader, view,
                                                   [1.0, float(self.factor), 1.0],
-                                                  data_range=strain, filled=True, log=log)
+                                                  data_range=strain, log=log,
+                                                  point_size=self.point_size())
             self.caption = self.time_label(view, t)[0]
             size = self.fit_to_run(view, layout)
             # The bands' red only where the frame has bands (not before the
@@ -539,22 +561,26 @@ class Figures:
 
 
 def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION, data_range=None,
-                       filled=False, log=False):
+                       log=False, point_size=None):
     """Figure 3's pipeline in a view: the particles coloured by their
     plastic shear strain, the base, the shear band skeletons (red) and the
     block outlines (black) over them (also the pipeline of
-    states/strain_bands.pvsm)."""
+    states/strain_bands.pvsm); with a point_size (the figures), the
+    particles filled (show_filled) and the blocks filled by type."""
     bands = simple.RunoutShearBands(registrationName="shear bands", Input=reader)
     blocks = simple.RunoutHorstsAndGrabens(registrationName="horsts and grabens",
                                            Input=reader)
     base = runout_pv.base_line(reader)
     runout_pv.show_lines(base, view, BASE_GREY, z=-1.0, width=3.0, scale=scale)
-    particles = (runout_pv.show(particle_domain(reader), view, scale=scale) if filled else
-                 runout_pv.show(reader, view, Representation="Points", PointSize=4.0,
-                                scale=scale))
-    lut = runout_pv.colour_by(particles, view, "plastic_shear_strain",
-                              "plastic shear strain" + (", log scale" if log else ""),
-                              data_range=data_range)
+    title = "plastic shear strain" + (", log scale" if log else "")
+    if point_size:
+        lut = show_filled(reader, view, scale, point_size, "plastic_shear_strain", title,
+                          data_range=data_range)
+    else:
+        particles = runout_pv.show(reader, view, Representation="Points", PointSize=4.0,
+                                   scale=scale)
+        lut = runout_pv.colour_by(particles, view, "plastic_shear_strain", title,
+                                  data_range=data_range)
     if log:
         lut.UseLogScale = 1
         # One label a decade: the automatic ones crowd on a log scale.
@@ -562,7 +588,7 @@ def build_strain_bands(reader, view, scale=runout_pv.EXAGGERATION, data_range=No
         bar.UseCustomLabels, bar.AddRangeLabels, bar.LabelFormat = 1, 0, "%g"
         bar.CustomLabels = [10.0 ** k for k in range(round(math.log10(data_range[0])),
                                                      round(math.log10(data_range[1])) + 1)]
-    if filled:
+    if point_size:
         fill_blocks(blocks, view, scale)
     runout_pv.show_lines(blocks, view, BLOCK_INK, width=2.0, scale=scale)
     runout_pv.show_lines(bands, view, BAND_RED, z=2.0, width=3.0, scale=scale)
