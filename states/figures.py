@@ -602,8 +602,9 @@ BLOCK_TYPES = (("block", [0.6, 0.6, 0.6]), ("horst", [0.0, 0.45, 0.70]),
 
 def fill_blocks(blocks, view, scale):
     """The blocks filled by their type, translucent over the strain, with a
-    legend in the lower right corner. Triangulated: the blocks are concave
-    polygons, which VTK would fill as fans."""
+    legend in the lower right corner where the frame has blocks.
+    Triangulated: the blocks are concave polygons, which VTK would fill as
+    fans."""
     triangles = simple.Triangulate(registrationName="blocks filled", Input=blocks)
     display = runout_pv.show(triangles, view, z=0.5, scale=scale, Opacity=0.35)
     simple.ColorBy(display, ("CELLS", "type_code"))
@@ -614,7 +615,8 @@ def fill_blocks(blocks, view, scale):
     lut.IndexedColors = [c for _, colour in BLOCK_TYPES for c in colour]
     display.LookupTable = lut
     display.Ambient, display.Diffuse = 1.0, 0.0
-    display.SetScalarBarVisibility(view, True)
+    blocks.UpdatePipeline(simple.GetAnimationScene().AnimationTime)
+    display.SetScalarBarVisibility(view, blocks.GetDataInformation().GetNumberOfCells() > 0)
     bar = simple.GetScalarBar(lut, view)
     bar.Title = bar.ComponentTitle = ""
     bar.TitleColor = bar.LabelColor = runout_pv.INK
