@@ -495,7 +495,9 @@ class Figures:
         exaggerated picture's) in red beside the bands' centroids, 14
         pixels high: the longest bands first, a band whose label would
         overlap one already placed left unlabelled and counted in the
-        caption. Returns the number of bands."""
+        caption. Every band, marked or not, is listed in
+        strain_bands_tNNNN.NN.csv beside the picture. Returns the number of
+        bands."""
         bands.UpdatePipeline(t)
         table = servermanager.Fetch(bands, idx=1)
         names = [table.GetColumnName(c) for c in range(table.GetNumberOfColumns())]
@@ -511,14 +513,21 @@ class Figures:
             x = row["centroid_x"] + 0.5 * height
             y = self.factor * row["centroid_y"] + 0.5 * height
             # builtins': pvbatch's namespace has VTK's array any and abs.
-            if builtins.any(builtins.abs(x - px) < 5 * height
+            if builtins.any(builtins.abs(x - px) < 6.5 * height
                             and builtins.abs(y - py) < 1.5 * height for px, py in placed):
                 continue
             placed.append((x, y))
+            row["marked"] = 1
             self.text_at(view, f"{row['dip']:.0f} deg", x, y, height, BAND_RED)
+        with open(os.path.join(self.folder, f"strain_bands_t{t:07.2f}.csv"), "w",
+                  newline="") as f:
+            table_out = csv.DictWriter(f, ["centroid_x", "centroid_y", "dip", "length",
+                                           "marked"], restval=0, extrasaction="ignore")
+            table_out.writeheader()
+            table_out.writerows(rows)
         if len(placed) < len(rows):
-            self.caption.Text += (f"; dips of the {len(placed)} longest of "
-                                  f"{len(rows)} shear bands marked")
+            self.caption.Text += (f"; dips of the {len(placed)} longest of {len(rows)} "
+                                  "bands (all: .csv)")
         return len(rows)
 
     # 4. Runout and toe velocity against time (matplotlib, as figure 2),
