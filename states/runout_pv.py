@@ -92,6 +92,8 @@ def colour_by(display, view, array, title, preset="Viridis (matplotlib)", compon
     bar.TitleColor = bar.LabelColor = INK
     bar.WindowLocation = location
     bar.Orientation = "Horizontal"
+    # The ends as the other labels read (0 and 4.5, not 0.0e+00 and 4.5e+00).
+    bar.RangeLabelFormat = "%.3g"
     return lut
 
 
