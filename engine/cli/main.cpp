@@ -136,6 +136,23 @@ void add_limit_args(CLI::App* cmd, LimitArgs& a) {
       ->check(cli::finite_positive());
 }
 
+// --threads, --quiet and --backend of run and resume.
+struct RunArgs {
+  int threads = 0;  // 0: by the scene's size (cli::use_default_threads)
+  bool quiet = false;
+  std::string backend = "cpu";
+};
+
+void add_run_args(CLI::App* cmd, RunArgs& a) {
+  cmd->add_option("-t,--threads", a.threads,
+                  "OpenMP threads (default: by the scene's size, at most all cores, then on the "
+                  "CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
+      ->check(cli::whole_number_from(1));
+  cmd->add_flag("-q,--quiet", a.quiet, "No progress output");
+  cmd->add_option("--backend", a.backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
+}
+
 // The limits; a run is bounded by the free disk of its output folder too.
 CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
   CostLimits limits;
@@ -403,19 +420,13 @@ int main(int argc, char** argv) {
   SceneArgs run_args, check_args;
   LimitArgs run_limits, check_limits;
   std::string out;
-  int threads = 0;
-  bool quiet = false;
+  RunArgs run_resume_args;  // shared by run and resume
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its frames and history");
   add_scene_args(run_cmd, run_args);
   add_limit_args(run_cmd, run_limits);
   run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)")
       ->check(cli::non_empty_folder());
-  run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
-      ->check(cli::whole_number_from(1));
-  run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
-  std::string backend = "cpu";
-  run_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
-      ->check(CLI::IsMember({"cpu", "cuda"}));
+  add_run_args(run_cmd, run_resume_args);
   double checkpoint_every = 0;
   run_cmd->add_option("--checkpoint-every", checkpoint_every,
                       "Write checkpoint.bin every SECONDS of simulated time (rounded to "
@@ -427,11 +438,7 @@ int main(int argc, char** argv) {
   resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")
       ->required()
       ->check(cli::non_empty_folder());
-  resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
-      ->check(cli::whole_number_from(1));
-  resume_cmd->add_flag("-q,--quiet", quiet, "No progress output");
-  resume_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
-      ->check(CLI::IsMember({"cpu", "cuda"}));
+  add_run_args(resume_cmd, run_resume_args);
   CLI::App* check_cmd =
       app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
   add_scene_args(check_cmd, check_args);
@@ -464,6 +471,9 @@ int main(int argc, char** argv) {
     app.exit(e);
     return cli::kUsage;
   }
+  const int threads = run_resume_args.threads;
+  const std::string& backend = run_resume_args.backend;
+  const bool quiet = run_resume_args.quiet;
   if (threads > 0) omp_set_num_threads(threads);
   if (*run_cmd || *resume_cmd || *study_cmd) stop_on_signals();
   try {
