@@ -434,7 +434,7 @@ void Driver<Backend>::exchange(Exchange after) {
   if (config_.period > 0.0) backend_.for_each(grid_.ny, stage::ExchangeRow{grid_, after});
 }
 
-// V* of XPIC(m) (stages.hpp): m - 1 round trips of the start velocity.
+// V* of XPIC(m) (musl_stages.hpp): m - 1 round trips of the start velocity.
 template <class Backend>
 void Driver<Backend>::xpic_start_velocity(const StepConfig& c) {
   const GridView g = grid_;
