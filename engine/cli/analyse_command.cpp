@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "option_checks.hpp"
+#include "exit_codes.hpp"
 #include "runout/analysis/analysis_files.hpp"
 #include "runout/analysis/run_analysis.hpp"
 
@@ -35,12 +36,12 @@ int run_analyse(const AnalyseArgs& args) {
     if (e.path().extension() == ".pvd") indexes.push_back(e.path());
   if (indexes.empty()) {
     std::cerr << "runout: analyse: no .pvd index in " << args.out_dir << "\n";
-    return 66;
+    return cli::kNoScene;
   }
   if (indexes.size() > 1) {
     std::cerr << "runout: analyse: " << args.out_dir << " holds " << indexes.size()
               << " .pvd indexes; a run's output folder holds one\n";
-    return 64;
+    return cli::kUsage;
   }
   analysis::AnalysisParameters parameters;
   parameters.bin_spacings = args.bin_spacings;
@@ -51,18 +52,18 @@ int run_analyse(const AnalyseArgs& args) {
     });
   } catch (const std::runtime_error& e) {
     std::cerr << "runout: analyse: " << e.what() << "\n";
-    return 66;
+    return cli::kNoScene;
   }
   const std::string out = (fs::path(args.out_dir) / analysis::kAnalysisFolder).string();
   try {
     analysis::write_analysis(out, run, parameters);
   } catch (const std::exception& e) {
     std::cerr << "runout: analyse: cannot write the analysis: " << e.what() << "\n";
-    return 73;
+    return cli::kCantCreate;
   }
   std::printf("%s: %zu frames analysed, %zu skipped\n", out.c_str(), run.frames.size(),
               run.skipped.size());
-  return run.frames.empty() && !run.skipped.empty() ? 65 : 0;
+  return run.frames.empty() && !run.skipped.empty() ? cli::kSceneInvalid : cli::kOk;
 }
 
 }  // namespace runout

@@ -15,7 +15,7 @@ struct AnalyseArgs {
 
 void add_analyse_command(CLI::App& app, AnalyseArgs& args, CLI::App*& command);
 
-// Exit codes as runout's (sysexits): 0 when the analysis is written (frames
+// Exit codes (exit_codes.hpp): 0 when the analysis is written (frames
 // that could not be read are skipped with a warning), 65 when every listed
 // frame was skipped, 64 for a folder with more than one index, 66 for one
 // with none (or none readable), 73 when the analysis cannot be written.

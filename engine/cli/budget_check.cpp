@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "exit_codes.hpp"
 #include "runout/dam.hpp"
 #include "runout/device_info.hpp"
 #include "runout/scene_parser.hpp"
@@ -110,7 +111,7 @@ int budget_check(const Scene& scene, double budget) {
   else
     std::printf("pick: dam cpu at h = %.3g m: %s\n",
                 study::finest_cell_for_budget(dam_cal->model, budget), choice.reason.c_str());
-  return 0;
+  return cli::kOk;
 }
 
 }  // namespace runout

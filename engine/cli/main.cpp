@@ -1,13 +1,9 @@
-// runout: the command line. Exit codes follow sysexits(3): 64 usage, 65 the
-// scene is invalid, 66 the scene file cannot be read, 70 the run blew up
-// (frames before it are kept), 69 the backend asked for cannot run here, 73
-// the output cannot be written, 75 another runout writes into the output
-// folder. `resume`: 66 no checkpoint in the folder, 65 one that is corrupt,
-// of another version or of another run, 79 a folder that does not go with
-// its checkpoint (a kept frame changed, history.csv too short), left as it
-// was. A run stopped by SIGINT, SIGTERM or
-// SIGHUP exits 128 + the signal's number (130, 143, 129), as a shell
-// reports a process the signal killed.
+// runout: the command line. Exit codes: exit_codes.hpp. `resume`: 66 no
+// checkpoint in the folder, 65 one that is corrupt, of another version or
+// of another run, 79 a folder that does not go with its checkpoint (a kept
+// frame changed, history.csv too short), left as it was. A run stopped by
+// SIGINT, SIGTERM or SIGHUP exits 128 + the signal's number (130, 143, 129),
+// as a shell reports a process the signal killed.
 #include <omp.h>
 #include <signal.h>
 #include <sys/resource.h>
@@ -25,6 +21,7 @@
 #include "analyse_command.hpp"
 #include "report_command.hpp"
 #include "budget_check.hpp"
+#include "exit_codes.hpp"
 #include "option_checks.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
@@ -50,19 +47,6 @@ namespace {
 
 using namespace runout;
 
-enum Exit {
-  kOk = 0,
-  kUsage = 64,
-  kSceneInvalid = 65,
-  kNoScene = 66,
-  kUnavailable = 69,
-  kBlowUp = 70,
-  kCantCreate = 73,
-  kFolderBusy = 75,   // EX_TEMPFAIL: it may work once the other run is done
-  kResumeRefused = 79,  // past sysexits' range: the folder does not go with its checkpoint
-  kSignalBase = 128
-};
-
 void on_stop_signal(int signal) { request_stop(signal); }
 
 // The first SIGINT, SIGTERM or SIGHUP asks the run to stop at the next step
@@ -82,7 +66,7 @@ int report_stop(const RunSummary& r, const RunOptions& opt, int signal) {
             << " s; the " << r.frames << " frames written are kept in " << opt.out_dir << "\n";
   if (!r.checkpoint_path.empty())
     std::cerr << "runout: continue with: runout resume " << opt.out_dir << "\n";
-  return kSignalBase + signal;
+  return cli::kSignalBase + signal;
 }
 
 struct SceneArgs {
@@ -152,6 +136,23 @@ void add_limit_args(CLI::App* cmd, LimitArgs& a) {
       ->check(cli::finite_positive());
 }
 
+// --threads, --quiet and --backend of run and resume.
+struct RunArgs {
+  int threads = 0;  // 0: by the scene's size (cli::use_default_threads)
+  bool quiet = false;
+  std::string backend = "cpu";
+};
+
+void add_run_args(CLI::App* cmd, RunArgs& a) {
+  cmd->add_option("-t,--threads", a.threads,
+                  "OpenMP threads (default: by the scene's size, at most all cores, then on the "
+                  "CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
+      ->check(cli::whole_number_from(1));
+  cmd->add_flag("-q,--quiet", a.quiet, "No progress output");
+  cmd->add_option("--backend", a.backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
+}
+
 // The limits; a run is bounded by the free disk of its output folder too.
 CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
   CostLimits limits;
@@ -195,7 +196,7 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
             << (s.method == Method::Dam ? "element" : "particle") << ", "
             << byte_text(memory.node_bytes) << " per grid node), "
             << (available ? byte_text(*available) : std::string("unknown")) << " available\n";
-  if (s.method == Method::Dam) return kOk;
+  if (s.method == Method::Dam) return cli::kOk;
   // Measured on the scene itself, so "on this machine" and at its size.
   try {
     const double per_step = seconds_per_step(sim, kWallEstimateSeconds);
@@ -207,7 +208,7 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
   } catch (const NumericalFailure& e) {
     std::cout << "# wall (about):     not measured, the first steps failed: " << e.what() << "\n";
   }
-  return kOk;
+  return cli::kOk;
 }
 
 using Runner = RunSummary (*)(const Scene&, const RunOptions&);
@@ -272,23 +273,23 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
   } catch (const ResumeRefused& e) {
     progress.finish();
     std::cerr << "runout: cannot resume: " << e.what() << "; the folder is left as it was\n";
-    return kResumeRefused;
+    return cli::kResumeRefused;
   } catch (const CheckpointMissing& e) {
     progress.finish();
     std::cerr << "runout: cannot resume: " << e.what() << "\n";
-    return kNoScene;
+    return cli::kNoScene;
   } catch (const CheckpointError& e) {
     progress.finish();
     std::cerr << "runout: cannot resume: " << e.what() << "\n";
-    return kSceneInvalid;
+    return cli::kSceneInvalid;
   } catch (const OutputFolderBusy& e) {
     progress.finish();
     std::cerr << "runout: " << e.what() << "\n";
-    return kFolderBusy;
+    return cli::kFolderBusy;
   } catch (const std::exception& e) {
     progress.finish();
     std::cerr << "runout: cannot write the output: " << e.what() << "\n";
-    return kCantCreate;
+    return cli::kCantCreate;
   }
   progress.finish();
   const std::string name = std::filesystem::path(r.pvd_path).stem().string();
@@ -311,10 +312,10 @@ int execute(const std::function<RunSummary(const RunOptions&)>& go, const RunOpt
     if (!r.checkpoint_path.empty())
       std::cerr << "runout: the last checkpoint, at t = " << r.checkpoint_time << " s, is kept: "
                 << r.checkpoint_path << "\n";
-    return kBlowUp;
+    return cli::kBlowUp;
   }
   if (const int signal = stopped_by()) return report_stop(r, opt, signal);
-  return kOk;
+  return cli::kOk;
 }
 
 int run(const Scene& s, const SceneSource& source, const std::string& out,
@@ -323,13 +324,13 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
   if (checkpoint_every > 0 && s.method == Method::Dam) {
     std::cerr << "runout: --checkpoint-every: the depth-averaged model (method = dam) writes "
                  "no checkpoints\n";
-    return kUsage;
+    return cli::kUsage;
   }
   std::string why_not;
   const Runner runner = runner_for(s, backend, why_not);
   if (!runner) {
     std::cerr << "runout: --backend " << backend << ": " << why_not << "\n";
-    return kUnavailable;
+    return cli::kUnavailable;
   }
   RunOptions opt;
   opt.out_dir = out.empty() ? "out/" + s.name : out;
@@ -359,7 +360,7 @@ int resume(const std::string& dir, const std::string& backend, bool quiet,
   const Resumer resumer = mpm_backend(backend, why_not).resume;
   if (!resumer) {
     std::cerr << "runout: --backend " << backend << ": " << why_not << "\n";
-    return kUnavailable;
+    return cli::kUnavailable;
   }
   RunOptions opt;
   opt.out_dir = dir;
@@ -376,7 +377,7 @@ int verify(const std::string& dir) {
     if (e.path().extension() == ".pvd") indexes.push_back(e.path().string());
   if (indexes.empty()) {
     std::cerr << "runout: verify: no .pvd index in " << dir << "\n";
-    return kNoScene;
+    return cli::kNoScene;
   }
   int bad = 0;
   for (const std::string& pvd : indexes) {
@@ -390,9 +391,9 @@ int verify(const std::string& dir) {
       ++bad;
     }
   }
-  if (bad > 0) return kSceneInvalid;
+  if (bad > 0) return cli::kSceneInvalid;
   std::printf("%s: every listed frame matches its manifest\n", dir.c_str());
-  return kOk;
+  return cli::kOk;
 }
 
 int info() {
@@ -405,7 +406,7 @@ int info() {
   const auto devices = cuda_devices(why);
   if (devices.empty()) std::printf("CUDA devices: none (%s)\n", why.c_str());
   for (const auto& d : devices) std::printf("CUDA device %s\n", d.c_str());
-  return kOk;
+  return cli::kOk;
 }
 
 }  // namespace
@@ -419,19 +420,13 @@ int main(int argc, char** argv) {
   SceneArgs run_args, check_args;
   LimitArgs run_limits, check_limits;
   std::string out;
-  int threads = 0;
-  bool quiet = false;
+  RunArgs run_resume_args;  // shared by run and resume
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its frames and history");
   add_scene_args(run_cmd, run_args);
   add_limit_args(run_cmd, run_limits);
   run_cmd->add_option("-o,--out", out, "Output folder (default out/<scene name>)")
       ->check(cli::non_empty_folder());
-  run_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
-      ->check(cli::whole_number_from(1));
-  run_cmd->add_flag("-q,--quiet", quiet, "No progress output");
-  std::string backend = "cpu";
-  run_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
-      ->check(CLI::IsMember({"cpu", "cuda"}));
+  add_run_args(run_cmd, run_resume_args);
   double checkpoint_every = 0;
   run_cmd->add_option("--checkpoint-every", checkpoint_every,
                       "Write checkpoint.bin every SECONDS of simulated time (rounded to "
@@ -443,11 +438,7 @@ int main(int argc, char** argv) {
   resume_cmd->add_option("out_dir", resume_dir, "Output folder of the run")
       ->required()
       ->check(cli::non_empty_folder());
-  resume_cmd->add_option("-t,--threads", threads, "OpenMP threads (default: by the scene's size, at most all cores, then on the CPU as many of those as its steps run fastest on; OMP_NUM_THREADS if set)")
-      ->check(cli::whole_number_from(1));
-  resume_cmd->add_flag("-q,--quiet", quiet, "No progress output");
-  resume_cmd->add_option("--backend", backend, "cpu (OpenMP) or cuda (MPM on an NVIDIA GPU)")
-      ->check(CLI::IsMember({"cpu", "cuda"}));
+  add_run_args(resume_cmd, run_resume_args);
   CLI::App* check_cmd =
       app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
   add_scene_args(check_cmd, check_args);
@@ -478,8 +469,11 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
-    return kUsage;
+    return cli::kUsage;
   }
+  const int threads = run_resume_args.threads;
+  const std::string& backend = run_resume_args.backend;
+  const bool quiet = run_resume_args.quiet;
   if (threads > 0) omp_set_num_threads(threads);
   if (*run_cmd || *resume_cmd || *study_cmd) stop_on_signals();
   try {
@@ -496,12 +490,12 @@ int main(int argc, char** argv) {
     return info();
   } catch (const SceneFileError& e) {
     std::cerr << "runout: " << e.what() << "\n";
-    return kNoScene;
+    return cli::kNoScene;
   } catch (const SceneError& e) {
     std::cerr << "runout: " << e.what() << "\n";
-    return kSceneInvalid;
+    return cli::kSceneInvalid;
   } catch (const NumericalFailure& e) {
     std::cerr << "runout: " << e.what() << "\n";
-    return kBlowUp;
+    return cli::kBlowUp;
   }
 }

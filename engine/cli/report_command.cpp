@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "exit_codes.hpp"
 #include "html_page.hpp"
 #include "runout/analysis/result_columns.hpp"
 #include "runout/analysis/run_analysis.hpp"
@@ -204,17 +205,17 @@ int run_report(const ReportArgs& args) {
     text = page(out_dir);
   } catch (const std::exception& e) {
     std::cerr << "runout: report: " << args.out_dir << ": " << e.what() << "\n";
-    return 66;
+    return cli::kNoScene;
   }
   const fs::path path = out_dir / kReportFile;
   try {
     write_file_atomically(path.string(), text);
   } catch (const std::exception& e) {
     std::cerr << "runout: report: cannot write " << path.string() << ": " << e.what() << "\n";
-    return 73;
+    return cli::kCantCreate;
   }
   std::printf("%s\n", path.string().c_str());
-  return 0;
+  return cli::kOk;
 }
 
 }  // namespace runout

@@ -17,7 +17,7 @@ struct ReportArgs {
 
 void add_report_command(CLI::App& app, ReportArgs& args, CLI::App*& command);
 
-// Exit codes as runout's (sysexits): 0 when the page is written, 66 when
+// Exit codes (exit_codes.hpp): 0 when the page is written, 66 when
 // the folder has no summary.json, history.csv or scene.resolved.toml (not
 // a finished run) or they cannot be read, 73 when the page cannot be
 // written.

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "exit_codes.hpp"
 #include "runout/atomic_file.hpp"
 #include "runout/device_info.hpp"
 #include "runout/memory_estimate.hpp"
@@ -344,11 +345,11 @@ int launch(const std::vector<RunSpec>& runs, const StudyArgs& a, const fs::path&
                done, todo.size(), a.collect.empty() ? "" : " (--collect: none run)");
   if (!a.collect.empty() || todo.empty()) {
     for (std::size_t k : todo) why[k] = "no finished summary.json: not run or not to its end";
-    return 0;
+    return cli::kOk;
   }
   if (a.launcher == "local") {
     run_local(todo, runs, a, dir / "runs", jobs, why);
-    return 0;
+    return cli::kOk;
   }
   std::vector<SlurmElement> elements;
   for (std::size_t k : todo) {
@@ -367,9 +368,9 @@ int launch(const std::vector<RunSpec>& runs, const StudyArgs& a, const fs::path&
                " submission(s); see " + (dir / "slurm").string();
   } catch (const std::runtime_error& e) {
     std::cerr << "runout study: --launcher slurm: " << e.what() << "\n";
-    return 69;
+    return cli::kUnavailable;
   }
-  return 0;
+  return cli::kOk;
 }
 
 // The finest successful MPM run to measure row k against: same scene
@@ -555,7 +556,7 @@ int run_study(const StudyArgs& given) {
     a = given.collect.empty() ? given : collected_args(given.collect);
   } catch (const std::exception& e) {  // CLI11's parse errors are std::exceptions too
     std::cerr << "runout study: " << e.what() << "\n";
-    return 66;
+    return cli::kNoScene;
   }
   const SceneSource base = [&]() -> SceneSource {
     if (a.scene.empty()) return {"default.toml", std::string(default_scene_toml())};
@@ -584,10 +585,10 @@ int run_study(const StudyArgs& given) {
     lock_output_folder(dir.string());
   } catch (const OutputFolderBusy& e) {
     std::cerr << "runout study: " << e.what() << "\n";
-    return 75;
+    return cli::kFolderBusy;
   } catch (const std::exception& e) {
     std::cerr << "runout study: " << e.what() << "\n";
-    return 73;
+    return cli::kCantCreate;
   }
   const AdoptedFolderLock lock(dir.string());
   try {
@@ -613,7 +614,7 @@ int run_study(const StudyArgs& given) {
     throw;  // main's exit code for a scene the study cannot take
   } catch (const std::exception& e) {
     std::cerr << "runout study: " << e.what() << "\n";
-    return 73;
+    return cli::kCantCreate;
   }
 
   // Each row's errors and reference, then the Pareto front of wall time
@@ -669,15 +670,15 @@ int run_study(const StudyArgs& given) {
     write_file_atomically(csv_path, csv);
   } catch (const std::exception& e) {
     std::cerr << "runout study: " << e.what() << "\n";
-    return 73;
+    return cli::kCantCreate;
   }
   std::printf("study: %s (%zu rows)\n", csv_path.c_str(), runs.size());
   for (std::size_t k = 0; k < runs.size(); ++k)
     if (results[k].status != "ok")
       std::printf("  %s: %s: %s\n", runs[k].id.c_str(), results[k].status.c_str(),
                   results[k].note.c_str());
-  if (const int signal = stop_requested()) return 128 + signal;  // as `runout run`
-  return all_ran ? 0 : 70;
+  if (const int signal = stop_requested()) return cli::kSignalBase + signal;  // as `runout run`
+  return all_ran ? cli::kOk : cli::kBlowUp;
 }
 
 }  // namespace runout

@@ -39,7 +39,7 @@ struct StudyArgs {
 
 void add_study_command(CLI::App& app, StudyArgs& args, CLI::App*& command);
 
-// Exit codes as runout's (sysexits): 0 when every run that applies ran, 70
+// Exit codes (exit_codes.hpp): 0 when every run that applies ran, 70
 // when one failed (its row says how), 65 for a key, value or distribution
 // the scene refuses (nothing run), 69 when sbatch cannot be run, 73 when
 // the study cannot be written.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "runout/scene_quantities.hpp"
+
 namespace runout {
 
 GuardLimits guard_limits(const Scene& scene, const std::vector<MaterialParams>& materials,
@@ -17,7 +19,7 @@ GuardLimits guard_limits(const Scene& scene, const std::vector<MaterialParams>& 
   const double free_fall = std::sqrt(2.0 * scene.gravity.vector.norm() * diagonal);
   double wave = 0.0;
   for (const MaterialParams& m : materials)
-    if (m.density > 0.0) wave = std::max(wave, std::sqrt(p_wave_modulus(m) / m.density));
+    if (m.density > 0.0) wave = std::max(wave, p_wave_speed(m));
   double start = 0.0;
   for (int p = 0; p < particles.size(); ++p)
     start = std::max(start, std::hypot(particles.vx[p], particles.vy[p]));

@@ -15,4 +15,10 @@ MaterialParams material_params(const MaterialSpec& m) {
   return params;
 }
 
+std::vector<MaterialParams> make_materials(const Scene& s) {
+  std::vector<MaterialParams> out;
+  for (const auto& m : s.materials) out.push_back(material_params(m));
+  return out;
+}
+
 }  // namespace runout

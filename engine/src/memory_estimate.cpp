@@ -16,6 +16,7 @@
 #include "runout/materials.hpp"
 #include "runout/polygon.hpp"
 #include "runout/scene_parser.hpp"
+#include "runout/scene_quantities.hpp"
 #include "runout/stages.hpp"
 
 namespace runout {
@@ -65,7 +66,7 @@ double span(const GridSpec& grid, int axis) {
 // r = s / sqrt(2) of a lattice cell, A + P r + pi r^2 (Steiner's formula
 // bounds it for any simple polygon), over s^2.
 void count_particles(const Scene& scene, MemoryEstimate& e) {
-  const double s = scene.grid.cell_size / scene.grid.ppc;
+  const double s = particle_spacing(scene);
   for (const BodySpec& body : scene.bodies) {
     const double area = std::abs(signed_area(body.polygon));
     e.items += area / (s * s);
@@ -103,7 +104,7 @@ std::string number_text(double v) {
 // What the particle count comes from, for messages: the spacing and the
 // largest body.
 std::string particle_drivers(const Scene& scene) {
-  const double s = scene.grid.cell_size / scene.grid.ppc;
+  const double s = particle_spacing(scene);
   std::size_t largest = 0;
   for (std::size_t b = 1; b < scene.bodies.size(); ++b)
     if (std::abs(signed_area(scene.bodies[b].polygon)) >
@@ -206,15 +207,9 @@ constexpr double kProfileRowBytes = 6 * 24;
 
 RunCost estimate_cost(const Scene& scene, Method method) {
   RunCost c;
-  double c_max = 0;
-  for (const MaterialSpec& m : scene.materials) {
-    const MaterialParams p = material_params(m);
-    const double speed = std::sqrt(p_wave_modulus(p) / p.density);
-    if (speed > c_max) {
-      c_max = speed;
-      c.stiffest = m.name;
-    }
-  }
+  const FastestWave fastest = fastest_p_wave(make_materials(scene));
+  const double c_max = fastest.speed;
+  if (fastest.material >= 0) c.stiffest = scene.materials[fastest.material].name;
   c.initial_dt = c_max > 0 ? scene.time.courant * scene.grid.cell_size / c_max : 0;
   c.steps = c.initial_dt > 0 ? scene.time.end / c.initial_dt : 0;
   c.frames = std::floor(scene.time.end / scene.time.output_interval) + 1;

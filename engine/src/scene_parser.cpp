@@ -16,7 +16,7 @@
 #include <toml++/toml.h>
 
 #include "runout/polygon.hpp"
-#include "runout/stages.hpp"
+#include "runout/step_config.hpp"
 #include "scene_text.hpp"
 
 namespace runout {

@@ -8,6 +8,7 @@
 #include "runout/memory_estimate.hpp"
 #include "runout/polygon.hpp"
 #include "runout/scene_parser.hpp"
+#include "runout/scene_quantities.hpp"
 
 namespace runout {
 namespace {
@@ -31,7 +32,7 @@ IndexRange lattice_span(double origin, double spacing, double lo, double hi) {
 void seed_body(const Scene& scene, int body_index, std::vector<Seed>& seeds) {
   const Polygon& outline = scene.bodies[body_index].polygon;
   const Eigen::Vector2d& origin = scene.grid.min;
-  const double spacing = scene.grid.cell_size / scene.grid.ppc;
+  const double spacing = particle_spacing(scene);
 
   Eigen::Vector2d lo = outline.front(), hi = outline.front();
   for (const Eigen::Vector2d& v : outline) {
@@ -92,12 +93,12 @@ Particles seed_particles(const Scene& scene) {
       throw SceneError("body[" + std::to_string(b) + "] \"" + scene.bodies[b].name +
                            "\": no particle: the body covers no sub-cell centre of the particle "
                            "lattice (spacing grid.cell_size / grid.ppc = " +
-                           spacing_text(scene.grid.cell_size / scene.grid.ppc) +
+                           spacing_text(particle_spacing(scene)) +
                            " m); make it thicker or the spacing finer",
                        0);
   }
 
-  const double spacing = scene.grid.cell_size / scene.grid.ppc;
+  const double spacing = particle_spacing(scene);
   const double volume = spacing * spacing;
   const std::vector<double> scale = mass_scale(scene, seeds, volume);
   Particles particles;

@@ -1,24 +1,19 @@
-// The step configuration and the materials a scene gives the driver.
+// The step configuration a scene gives the driver.
 #include <algorithm>
 #include <cmath>
 
 #include "runout/driver.hpp"
 #include "runout/materials.hpp"
+#include "runout/scene_quantities.hpp"
 
 namespace runout {
-
-std::vector<MaterialParams> make_materials(const Scene& s) {
-  std::vector<MaterialParams> out;
-  for (const auto& m : s.materials) out.push_back(material_params(m));
-  return out;
-}
 
 StepConfig make_step_config(const Scene& s, const std::vector<MaterialParams>& materials) {
   const double h = s.grid.cell_size;
   StepConfig c;
   c.shape = s.grid.shape;
   c.domain = s.grid.domain;
-  c.lp = h / (2.0 * s.grid.ppc);
+  c.lp = particle_spacing(s) / 2.0;
   c.gx = s.gravity.vector.x();
   c.gy = s.gravity.vector.y();
   c.gravity_ramp = s.gravity.ramp;
@@ -27,8 +22,7 @@ StepConfig make_step_config(const Scene& s, const std::vector<MaterialParams>& m
   // The PIC share's time scale: pic_cells crossings of a cell by the
   // fastest P-wave, so it shrinks with the cell (the filtered sub-cell
   // velocity then carries less and less) but not with the time step.
-  double c_max = 0;
-  for (const auto& m : materials) c_max = std::max(c_max, std::sqrt(p_wave_modulus(m) / m.density));
+  const double c_max = fastest_p_wave(materials).speed;
   c.pic_time = c_max > 0.0 ? s.solver.pic_cells * h / c_max : 0.0;
   double rho_max = 0;
   for (const auto& m : materials) rho_max = std::max(rho_max, m.density);

@@ -50,9 +50,11 @@
 #include "runout/grid.hpp"
 #include "runout/guards.hpp"
 #include "runout/material.hpp"
+#include "runout/materials.hpp"
 #include "runout/nonlocal.hpp"
 #include "runout/particles.hpp"
 #include "runout/scene.hpp"
+#include "runout/scene_quantities.hpp"
 #include "runout/stages.hpp"
 #include "runout/step_views.hpp"
 
@@ -77,8 +79,7 @@ struct StepCounters {
   double speed_limit = 0;       // GuardLimits::max_speed, fixed by the first particles
 };
 
-// The scene's step configuration and materials (step_config.cpp).
-std::vector<MaterialParams> make_materials(const Scene& scene);
+// The scene's step configuration (step_config.cpp).
 StepConfig make_step_config(const Scene& scene, const std::vector<MaterialParams>& materials);
 
 namespace stage {
@@ -392,7 +393,7 @@ Driver<Backend>::Driver(const Scene& scene, Particles particles)
       domain_y_(scene.grid.min.y()),
       h_(scene.grid.cell_size),
       courant_(scene.time.courant),
-      spacing_(scene.grid.cell_size / scene.grid.ppc),
+      spacing_(runout::particle_spacing(scene)),
       smooth_volumetric_(scene.solver.volumetric_smoothing) {
   config_.base = base_.view();
 }
@@ -433,7 +434,7 @@ void Driver<Backend>::exchange(Exchange after) {
   if (config_.period > 0.0) backend_.for_each(grid_.ny, stage::ExchangeRow{grid_, after});
 }
 
-// V* of XPIC(m) (stages.hpp): m - 1 round trips of the start velocity.
+// V* of XPIC(m) (musl_stages.hpp): m - 1 round trips of the start velocity.
 template <class Backend>
 void Driver<Backend>::xpic_start_velocity(const StepConfig& c) {
   const GridView g = grid_;

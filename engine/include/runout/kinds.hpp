@@ -6,7 +6,7 @@ namespace runout {
 
 enum class ShapeKind { Gimp, Linear };
 // A GIMP particle's domain: its initial square kept (uGIMP), or a rectangle
-// that follows the particle's deformation (stages.hpp, domain_half_widths).
+// that follows the particle's deformation (stencil.hpp, domain_half_widths).
 enum class DomainKind { Deforming, Fixed };
 // Grid-to-particle velocity transfer: FLIP with a PIC share that damps at a
 // rate set in physical time, APIC (affine particle-in-cell, Jiang et al.

@@ -1,6 +1,8 @@
 #pragma once
 // From a scene's material (host) to the plain parameter records the solvers
 // use, in one place for the MPM and the depth-averaged method.
+#include <vector>
+
 #include "runout/material.hpp"
 #include "runout/scene.hpp"
 
@@ -10,5 +12,7 @@ namespace runout {
 // a law without softening or rate effect.
 StrengthParams strength_params(const MaterialSpec& m);
 MaterialParams material_params(const MaterialSpec& m);
+// Every material of the scene, in its order.
+std::vector<MaterialParams> make_materials(const Scene& scene);
 
 }  // namespace runout

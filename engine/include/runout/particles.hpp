@@ -26,7 +26,7 @@ struct ParticleView {
   // 2015); zero under the PIC/FLIP transfer.
   double *cxx, *cxy, *cyx, *cyy;
   // Deformation gradient F (identity at the start): it shapes the particle's
-  // GIMP domain (stages.hpp, domain_half_widths).
+  // GIMP domain (stencil.hpp, domain_half_widths).
   double *fxx, *fxy, *fyx, *fyy;
   int *body;              // body index in the scene
   int *material;          // material index in the scene

@@ -53,7 +53,7 @@ struct SolverSpec {
   // time a P-wave takes to cross pic_cells cells (flip_share); 0, the
   // default: pure FLIP, as Uintah, CB-Geo and Anura3D run.
   double pic_cells = 0.0;
-  // XPIC(m) (Hammerquist and Nairn 2017, stages.hpp): every step with
+  // XPIC(m) (Hammerquist and Nairn 2017, musl_stages.hpp): every step with
   // transfer "xpic"; with "flip", one XPIC step each time a P-wave crosses
   // xpic_cells cells (0: never), a noise filter on a schedule of physical
   // time, as NairnMPM runs it (periodicCFL), so that what it removes per
