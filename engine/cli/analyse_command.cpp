@@ -7,6 +7,7 @@
 
 #include "option_checks.hpp"
 #include "exit_codes.hpp"
+#include "pvd_indexes.hpp"
 #include "runout/analysis/analysis_files.hpp"
 #include "runout/analysis/run_analysis.hpp"
 
@@ -30,10 +31,7 @@ void add_analyse_command(CLI::App& app, AnalyseArgs& args, CLI::App*& command) {
 }
 
 int run_analyse(const AnalyseArgs& args) {
-  std::vector<fs::path> indexes;
-  std::error_code error;
-  for (const auto& e : fs::directory_iterator(args.out_dir, error))
-    if (e.path().extension() == ".pvd") indexes.push_back(e.path());
+  const std::vector<std::string> indexes = cli::pvd_indexes(args.out_dir);
   if (indexes.empty()) {
     std::cerr << "runout: analyse: no .pvd index in " << args.out_dir << "\n";
     return cli::kNoScene;
@@ -47,7 +45,7 @@ int run_analyse(const AnalyseArgs& args) {
   parameters.bin_spacings = args.bin_spacings;
   analysis::RunAnalysis run;
   try {
-    run = analysis::analyse_run(indexes[0].string(), parameters, [](const std::string& warning) {
+    run = analysis::analyse_run(indexes[0], parameters, [](const std::string& warning) {
       std::cerr << "runout: analyse: warning: " << warning << "\n";
     });
   } catch (const std::runtime_error& e) {

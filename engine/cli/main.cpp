@@ -25,6 +25,7 @@
 #include "option_checks.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
+#include "pvd_indexes.hpp"
 #include "thread_count.hpp"
 #include "study_command.hpp"
 #include "runout/analysis/final_mechanism.hpp"
@@ -371,10 +372,7 @@ int resume(const std::string& dir, const std::string& backend, bool quiet,
 // Every frame the folder's index lists against its manifest: 0 when all
 // are whole, 65 naming each bad one, 66 when there is no index to check.
 int verify(const std::string& dir) {
-  std::vector<std::string> indexes;
-  std::error_code ignored;
-  for (const auto& e : std::filesystem::directory_iterator(dir, ignored))
-    if (e.path().extension() == ".pvd") indexes.push_back(e.path().string());
+  const std::vector<std::string> indexes = cli::pvd_indexes(dir);
   if (indexes.empty()) {
     std::cerr << "runout: verify: no .pvd index in " << dir << "\n";
     return cli::kNoScene;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "exit_codes.hpp"
+#include "pvd_indexes.hpp"
 #include "html_page.hpp"
 #include "runout/analysis/result_columns.hpp"
 #include "runout/analysis/run_analysis.hpp"
@@ -169,18 +170,17 @@ pre { background: #f7f7f7; padding: 1em; overflow-x: auto; }
 
 std::string page(const fs::path& out_dir) {
   const RunRecord record = read_run_record(out_dir.string());
-  const std::string scene_text = read_bytes(out_dir / "scene.resolved.toml");
-  const Scene scene = load_scene_file((out_dir / "scene.resolved.toml").string());
+  const std::string scene_path = (out_dir / "scene.resolved.toml").string();
+  const std::string scene_text = read_scene_text(scene_path);
+  const Scene scene = parse_scene(scene_text, scene_path);
   const study::History history = study::read_history((out_dir / "history.csv").string());
   std::string body = "<h1>" + html::escape(scene.name) + "</h1>\n<p>" +
                      html::escape(scene.description) + "</p>\n" + result_section(record, scene) +
                      motion_section(history);
   if (record.method == "mpm") {
-    std::vector<fs::path> indexes;
-    for (const auto& e : fs::directory_iterator(out_dir))
-      if (e.path().extension() == ".pvd") indexes.push_back(e.path());
+    const std::vector<std::string> indexes = cli::pvd_indexes(out_dir.string());
     body += indexes.size() == 1
-                ? mechanism_section(indexes[0].string())
+                ? mechanism_section(indexes[0])
                 : "<h2>Mechanism</h2>\n<p>The folder has no single .pvd index to analyse.</p>\n";
   }
   body += figures_section(out_dir) + "<h2>Scene</h2>\n<pre>" + html::escape(scene_text) + "</pre>\n";
