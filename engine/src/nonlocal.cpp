@@ -187,10 +187,12 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
   const double l = reg.length, reach = kNonlocalCutoff * l;
   // The box of the material's particles and their images, split over the
   // threads (min and max reduce in any order to the same bits); each
-  // particle's image is kept at its own index (vol 0: none), so the images
-  // are spread in particle order whatever the threads.
+  // particle's image is kept at its own index (vol 0: none; no array
+  // without a no-slip base to mirror in), so the images are spread in
+  // particle order whatever the threads.
   double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, xmax = -xmin, ymax = -xmin;
-  images_.assign(P.n, Image{0.0, 0.0, 0.0});
+  const bool mirrored = mirror_.kind != BaseKind::None;
+  images_.assign(mirrored ? P.n : 0, Image{0.0, 0.0, 0.0});
 #pragma omp parallel for schedule(static) reduction(min : xmin, ymin) reduction(max : xmax, ymax) \
     if (P.n > kParallelMin)
   for (int p = 0; p < P.n; ++p) {
@@ -199,6 +201,7 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
     xmax = std::max(xmax, P.x[p]);
     ymin = std::min(ymin, P.y[p]);
     ymax = std::max(ymax, P.y[p]);
+    if (!mirrored) continue;
     Image& image = images_[p];
     if (mirror_point(P.x[p], P.y[p], reach, image.x, image.y)) {
       image.vol = P.vol[p];
