@@ -184,6 +184,10 @@ class CudaBackend {
     RUNOUT_CUDA_LAUNCHED("for_each");
   }
   template <class Stage>
+  void for_each_node(const GridView& g, Stage stage) {  // every node of the box
+    for_each(g.size(), stage);
+  }
+  template <class Stage>
   void for_each_particle(Stage stage) {
     for_each(n_, stage);
   }
@@ -211,8 +215,8 @@ class CudaBackend {
     RUNOUT_CUDA_LAUNCHED("cell sums");
     return divide_cells();
   }
-  double sum(const double* a, int count);
-  void fill(double* a, int count, double v);
+  double sum_nodes(const GridView& g, const double* a);
+  void fill_nodes(const GridView& g, double* a, double v);
 
   GradientView gradients() const { return {lxx_.get(), lxy_.get(), lyx_.get(), lyy_.get()}; }
   StepScratch scratch() const { return {dx_.get(), dy_.get()}; }

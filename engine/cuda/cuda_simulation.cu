@@ -196,7 +196,7 @@ GridView CudaBackend::fit_grid(const GridView& placed) {
   for (int k = 0; k < 6; ++k)  // m, vol, p, f: the accumulated ones
     RUNOUT_CUDA_CHECK(cudaMemsetAsync(grid_arrays_[k].get(), 0, nodes * sizeof(double)));
   // The gap, a minimum: +infinity where no particle is.
-  fill(g.gap, static_cast<int>(nodes), std::numeric_limits<double>::infinity());
+  fill_nodes(g, g.gap, std::numeric_limits<double>::infinity());
   cells_ = (g.nx - 1) * (g.ny - 1);
   for (auto* b : {&cell_vol_, &cell_sum_, &cell_mean_}) b->reserve(cells_);
   return g;
@@ -236,14 +236,16 @@ SpeedMax CudaBackend::reduce_speed() {
   return out;
 }
 
-double CudaBackend::sum(const double* a, int count) {
+double CudaBackend::sum_nodes(const GridView& g, const double* a) {
+  const int count = g.size();
   cuda::reduce(count, cuda::SumOp{a}, reinterpret_cast<cuda::Sum*>(partials_.get()), sum_.get());
   cuda::Sum out;
   RUNOUT_CUDA_CHECK(cudaMemcpy(&out, sum_.get(), sizeof out, cudaMemcpyDeviceToHost));
   return out.v;
 }
 
-void CudaBackend::fill(double* a, int count, double v) {
+void CudaBackend::fill_nodes(const GridView& g, double* a, double v) {
+  const int count = g.size();
   if (v == 0.0) {
     RUNOUT_CUDA_CHECK(cudaMemsetAsync(a, 0, count * sizeof(double)));
     return;

@@ -40,12 +40,12 @@ class HostBackend {
     return fit_grid_with(placed, [](const GridView& g) { clear_sums(g, 0, g.size()); });
   }
   // The base's force is summed in node order, so the same every run.
-  double sum(const double* a, int count) const {
+  double sum_nodes(const GridView& g, const double* a) const {
     double total = 0;
-    for (int i = 0; i < count; ++i) total += a[i];
+    for (int i = 0; i < g.size(); ++i) total += a[i];
     return total;
   }
-  void fill(double* a, int count, double v) const { std::fill_n(a, count, v); }
+  void fill_nodes(const GridView& g, double* a, double v) const { std::fill_n(a, g.size(), v); }
 
   double* xi_start() { return xi_start_.data(); }
   double* xi_local() { return xi_local_.data(); }

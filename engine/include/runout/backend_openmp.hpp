@@ -19,6 +19,7 @@
 #include <omp.h>
 #endif
 
+#include "runout/active_nodes.hpp"
 #include "runout/backend_host.hpp"
 
 namespace runout {
@@ -125,6 +126,15 @@ class OpenMpBackend : public HostBackend {
       particles_.permute(order_);
       bin_particles(g, c);
     }
+    if (c.period > 0.0) {
+      active_.whole(g);
+      return;
+    }
+    const int blocks_x = (g.nx - 1 + kBlock - 1) / kBlock;
+    active_.find(g, kBlock, blocks_x, blocks_y_, [&](int bi, int by) {
+      const int b = ((bi / kStrip) * blocks_y_ + by) * kStrip + bi % kStrip;
+      return block_start_[b + 1] > block_start_[b];
+    });
   }
 
   // The first colour's strips are handed out before the second's, and a
@@ -172,45 +182,22 @@ class OpenMpBackend : public HostBackend {
       });
   }
 
-  // On every thread: cleared on one, the grid box held the other thread
-  // back 1 to 3 % of a two-thread step at 1e5 particles. All its arrays in
-  // one parallel loop, not one loop an array: each loop's start wakes the
-  // other threads, which under the CLI's wait (openmp_wait.hpp) have
-  // gone to sleep after a brief spin.
+  // The last step's nodes are cleared before the box moves (active_nodes.hpp),
+  // the whole box only where it needed more storage.
   GridView fit_grid(const GridView& placed) {
-    return fit_grid_with(placed, [](const GridView& g) {
-      const int n = g.size(), ranges = (n + kChunk - 1) / kChunk;
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
-      for (int r = 0; r < ranges; ++r) clear_sums(g, r * kChunk, std::min(n, (r + 1) * kChunk));
-    });
+    active_.clear(grid_.view());
+    const bool grows = static_cast<std::size_t>(placed.size()) > grid_.capacity();
+    const GridView& g = grid_.fit(placed);
+    if (grows) ActiveNodes::clear_all(g);
+    return g;
   }
-  // A sum over nodes (the base's force) in fixed pieces, whatever the
-  // number of threads: kChunk nodes a piece, each in four interleaved
-  // partial sums, the pieces' sums added in order. One sum in node order
-  // was a chain of dependent additions, 26 us of a 4.3 ms two-thread step
-  // at 1e5 particles, on one thread while the others waited.
-  double sum(const double* a, int count) {
-    const int pieces = (count + kChunk - 1) / kChunk;
-    piece_sums_.resize(pieces);
-    double* const sums = piece_sums_.data();
-#pragma omp parallel for schedule(static) if (count > kParallelMin)
-    for (int r = 0; r < pieces; ++r) {
-      const int i0 = r * kChunk, i1 = std::min(count, i0 + kChunk);
-      Lanes partial = splat(0.0);
-      int i = i0;
-      for (; i + 4 <= i1; i += 4) partial = partial + load_lanes(a + i);
-      double total = (lane(partial, 0) + lane(partial, 1)) + (lane(partial, 2) + lane(partial, 3));
-      for (; i < i1; ++i) total += a[i];
-      sums[r] = total;
-    }
-    double total = 0;
-    for (int r = 0; r < pieces; ++r) total += sums[r];
-    return total;
+  // The node stages over the nodes the particles reach (bin found them).
+  template <class Stage>
+  void for_each_node(const GridView&, Stage stage) {
+    active_.for_each(stage);
   }
-  void fill(double* a, int count, double v) const {
-#pragma omp parallel for schedule(static) if (count > kParallelMin)
-    for (int i = 0; i < count; ++i) a[i] = v;
-  }
+  void fill_nodes(const GridView&, double* a, double v) const { active_.fill(a, v); }
+  double sum_nodes(const GridView& g, const double* a) { return active_.sum(a, g.size()); }
 
   template <class Stage>
   void for_each(int count, Stage stage) {
@@ -731,7 +718,7 @@ class OpenMpBackend : public HostBackend {
   StaggeredArray lx_, ly_;
   // Particles grouped by block of kBlock x kBlock cells (counting sort).
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, next_;
-  std::vector<double> piece_sums_;             // sum's
+  ActiveNodes active_;                         // the nodes this step's particles reach
   std::vector<std::atomic<int>> strip_done_;  // a scatter's strips, 1 once added
   std::vector<GroupScratch> group_scratch_;     // a thread's, for its cell groups
   GroupScratch whole_particle_scratch_;          // for groups whose span passes the limit

@@ -82,6 +82,10 @@ class SerialDeviceBackend : public HostBackend {
     for (int i = 0; i < count; ++i) stage(i);
   }
   template <class Stage>
+  void for_each_node(const GridView& g, Stage stage) {  // every node of the box, as on the GPU
+    for_each(g.size(), stage);
+  }
+  template <class Stage>
   void for_each_particle(Stage stage) {
     for_each(particles_.size(), stage);
   }

@@ -9,13 +9,15 @@
 //   fit_grid(placed)                   the grid box's arrays, cleared
 //   bin(g, c, step)                    whatever scatter() needs (blocks, a sort)
 //   scatter(g, c, stage)               stage(p, stencil, add, lower) per particle
-//   for_each(count, stage)             stage(i) per node or node row
+//   for_each(count, stage)             stage(i) per node row
+//   for_each_node(g, stage)            stage(n) per node the particles reach (or
+//                                      every node of the box)
 //   for_each_particle(stage)           stage(p)
 //   for_each_particle_stencil(g, c, stage)  stage(p, stencil)      (*)
 //   max_speed(stage)                   max of stage(p), and how many were < 0
 //                                      (the CPU's four at a time, stage.four) (*)
-//   sum(a, count)                      a sum over nodes
-//   fill(a, count, v)
+//   sum_nodes(g, a)                    a sum over the box's nodes
+//   fill_nodes(g, a, v)                a = v where for_each_node goes
 //   cell_means(g, value)               per-cell volume-weighted means of value(p) (*),
 //                                      or, where a group has kMeansInPasses, taken
 //                                      in the pass before: the overloads
@@ -439,14 +441,13 @@ template <class Backend>
 void Driver<Backend>::xpic_start_velocity(const StepConfig& c) {
   const GridView g = grid_;
   const ParticleView P = backend_.particles();
-  const int nodes = g.size();
-  backend_.for_each(nodes, stage::XpicStart{g, c});
+  backend_.for_each_node(g, stage::XpicStart{g, c});
   for (int k = 2; k <= c.xpic_order; ++k) {
-    backend_.fill(g.px, nodes, 0.0);
-    backend_.fill(g.py, nodes, 0.0);
+    backend_.fill_nodes(g, g.px, 0.0);
+    backend_.fill_nodes(g, g.py, 0.0);
     backend_.scatter(g, c, stage::P2gSmoothed{P, g});
     exchange(Exchange::AfterMomentum);
-    backend_.for_each(nodes, stage::XpicTerm{g, c, k});
+    backend_.for_each_node(g, stage::XpicTerm{g, c, k});
     exchange(Exchange::AfterXpicTerm);
   }
 }
@@ -476,22 +477,21 @@ void Driver<Backend>::step(double dt) {
   const StepConfig c = backend_.kernel_config(config_);
   const GridView g = grid_;
   const ParticleView P = backend_.particles();
-  const int nodes = g.size();
 
   backend_.scatter(g, c, stage::P2g{P, g, c});
   exchange(Exchange::AfterP2g);
-  backend_.for_each(nodes, stage::GridUpdate{g, c, dt});
+  backend_.for_each_node(g, stage::GridUpdate{g, c, dt});
   exchange(Exchange::AfterGridUpdate);
-  const double basal = c.base.kind != BaseKind::None ? backend_.sum(g.fbase, nodes) : 0.0;
+  const double basal = c.base.kind != BaseKind::None ? backend_.sum_nodes(g, g.fbase) : 0.0;
   // grid_update leaves px, py zero; XPIC's round trips use them again.
   if (c.xpic_now) {
     xpic_start_velocity(c);
-    backend_.fill(g.px, nodes, 0.0);
-    backend_.fill(g.py, nodes, 0.0);
+    backend_.fill_nodes(g, g.px, 0.0);
+    backend_.fill_nodes(g, g.py, 0.0);
   }
   backend_.scatter(g, c, stage::G2pMomentum{P, g, c});
   exchange(Exchange::AfterMomentum);
-  backend_.for_each(nodes, stage::Remap{g, c, dt});
+  backend_.for_each_node(g, stage::Remap{g, c, dt});
   exchange(Exchange::AfterRemap);
 
   const bool nonlocal = nonlocal_.active();
