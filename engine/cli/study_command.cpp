@@ -22,6 +22,7 @@
 #include "runout/study.hpp"
 #include "child_process.hpp"
 #include "option_checks.hpp"
+#include "scene_loading.hpp"
 #include "study_parameters.hpp"
 #include "study_slurm.hpp"
 
@@ -134,16 +135,16 @@ void write_scenes(const StudyArgs& a, std::size_t points, std::vector<Variant>& 
   }
 }
 
-// The scene the child resolves from child_args, as `runout run` applies
-// its options (main.cpp's load): the hash its summary.json records, and
-// its size.
+// The scene the child resolves from child_args, as `runout run` loads it:
+// the hash its summary.json records, and its size.
 Scene child_scene(const RunSpec& r) {
-  Scene s = load_scene_file(r.variant->file);
   const bool mpm = r.method == "mpm";
-  apply_overrides(s, r.cell, mpm ? std::optional<int>(r.ppc) : std::nullopt);
-  apply_method_overrides(s, r.method, std::nullopt, std::nullopt);
-  apply_shape_override(s, mpm ? std::optional<std::string>(r.shape) : std::nullopt);
-  return s;
+  cli::SceneOverrides overrides;
+  overrides.cell = r.cell;
+  if (mpm) overrides.ppc = r.ppc;
+  overrides.method = r.method;
+  if (mpm) overrides.shape = r.shape;
+  return cli::load_scene(cli::scene_source(r.variant->file), overrides);
 }
 
 // The rows expand_matrix gives, counted before any scene is parsed: an
@@ -558,12 +559,8 @@ int run_study(const StudyArgs& given) {
     std::cerr << "runout study: " << e.what() << "\n";
     return cli::kNoScene;
   }
-  const SceneSource base = [&]() -> SceneSource {
-    if (a.scene.empty()) return {"default.toml", std::string(default_scene_toml())};
-    std::string text = read_scene_text(a.scene);  // a regular file of a scene's size
-    parse_scene(text, a.scene);  // the scene's own refusals before the settings'
-    return {a.scene, std::move(text)};
-  }();
+  const SceneSource base = cli::scene_source(a.scene);
+  parse_scene(base.text, base.name);  // the scene's own refusals before the settings'
   const StudyParameters params =
       study_parameters(a.settings, a.vary, a.samples, a.seed, a.design);
   require_study_size(matrix_runs(a, params.points.size()),
