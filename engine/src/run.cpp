@@ -61,8 +61,13 @@ RunSummary run_dam(const Scene& scene, const RunOptions& options) {
     const HistoryRow row = dam_history_row(dam, initial_toe);
     return rest.at_rest(row.time, row.toe_velocity, row.centroid_velocity);
   };
-  run_schedule(scene, options, start, dam, 0, record, write_frame, 0, [](long) {}, at_rest,
-               summary);
+  run_schedule(dam, {.scene = scene,
+                     .options = options,
+                     .start = start,
+                     .record = record,
+                     .write_frame = write_frame,
+                     .at_rest = at_rest,
+                     .summary = summary});
   return summary;
 }
 
