@@ -169,12 +169,12 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
 constexpr double kWallEstimateSeconds = 0.1;
 
 int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args) {
-  require_memory(s, s.method, source);  // the more basic refusal comes first
-  require_cost(s, s.method, limits_for(limit_args, nullptr), source);
-  const MemoryEstimate memory = estimate_memory(s, s.method);
+  // The more basic refusal comes first.
+  const MemoryEstimate memory = require_memory(s, s.method, source);
+  require_cost(s, s.method, memory, limits_for(limit_args, nullptr), source);
   // The threads a run of the scene would use, for the wall-time estimate.
   cli::use_default_threads(memory.items);
-  const RunCost cost = estimate_cost(s, s.method);
+  const RunCost cost = estimate_cost(s, memory);
   Simulation sim(s);
   const double dt = sim.stable_dt();
   const int n = sim.particles().size();
@@ -332,10 +332,11 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
   RunOptions opt;
   opt.out_dir = out.empty() ? "out/" + s.name : out;
   opt.checkpoint_every = checkpoint_every;
-  require_memory(s, s.method, source);  // the more basic refusal comes first
-  require_cost(s, s.method, limits_for(limit_args, &opt.out_dir), source);
+  // The run's one memory estimate; the more basic refusal comes first.
+  opt.memory = require_memory(s, s.method, source);
+  require_cost(s, s.method, *opt.memory, limits_for(limit_args, &opt.out_dir), source);
   if (default_threads) {
-    cli::use_default_threads(estimate_memory(s, s.method).items);
+    cli::use_default_threads(opt.memory->items);
     if (backend == "cpu" && s.method == Method::Mpm) opt.adapt_threads = cli::adaptable_threads();
   }
   return execute([&](const RunOptions& o) { return runner(s, o); }, opt, quiet,

@@ -321,7 +321,7 @@ SlurmRequest slurm_request(const std::vector<std::size_t>& todo, const std::vect
     const Scene s = child_scene(runs[k]);
     const MemoryEstimate m = estimate_memory(s, s.method);
     req.memory_mib = std::max(req.memory_mib, kBaseMiB + 2.0 * m.bytes() / kMiB);
-    const double seconds = 2.0 * estimate_cost(s, s.method).steps * m.items /
+    const double seconds = 2.0 * estimate_cost(s, m).steps * m.items /
                            (kParticleStepsPerSecond * a.threads);
     req.minutes = std::max(req.minutes, kMinMinutes + seconds / 60.0);
   }

@@ -4,6 +4,7 @@
 
 #include "run_schedule.hpp"
 #include "runout/dam_output.hpp"
+#include "runout/seeding.hpp"
 
 namespace runout {
 
@@ -11,7 +12,7 @@ using namespace run_detail;
 
 RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const auto start = Clock::now();
-  Simulation sim(scene);
+  Simulation sim(scene, seed_particles(scene, options.memory));
   return run_mpm(scene, options, start, sim, [&]() -> const Particles& { return sim.particles(); });
 }
 
