@@ -25,6 +25,7 @@
 #include "option_checks.hpp"
 #include "openmp_wait.hpp"
 #include "progress.hpp"
+#include "scene_loading.hpp"
 #include "pvd_indexes.hpp"
 #include "thread_count.hpp"
 #include "study_command.hpp"
@@ -72,40 +73,35 @@ int report_stop(const RunSummary& r, const RunOptions& opt, int signal) {
 
 struct SceneArgs {
   std::string path;  // empty: the built-in default scene
-  std::optional<double> cell;
-  std::optional<int> ppc;
-  std::optional<double> end;
-  std::optional<std::string> method, shear_rate, shape;
-  std::optional<int> elements;
+  cli::SceneOverrides overrides;
 };
 
 void add_scene_args(CLI::App* cmd, SceneArgs& a) {
+  cli::SceneOverrides& o = a.overrides;
   cmd->add_option("scene", a.path, "Scene file (TOML); the built-in default scene if omitted");
-  cmd->add_option("--cell", a.cell, "Override the cell size h [m]");
-  cmd->add_option("--ppc", a.ppc, "Override the particles per cell per direction");
-  cmd->add_option("--end", a.end, "Override the end time [s]");
-  cmd->add_option("--method", a.method, "Override the method: mpm or dam (depth-averaged)");
-  cmd->add_option("--shape", a.shape, "Override the MPM shape functions: gimp or linear");
-  cmd->add_option("--shear-rate", a.shear_rate,
+  cmd->add_option("--cell", o.cell, "Override the cell size h [m]");
+  cmd->add_option("--ppc", o.ppc, "Override the particles per cell per direction");
+  cmd->add_option("--end", o.end, "Override the end time [s]");
+  cmd->add_option("--method", o.method, "Override the method: mpm or dam (depth-averaged)");
+  cmd->add_option("--shape", o.shape, "Override the MPM shape functions: gimp or linear");
+  cmd->add_option("--shear-rate", o.shear_rate,
                   "Override the depth-averaged shear rate estimate: band (the default where the "
                   "slide's clay has band_thickness), linear or plug");
-  cmd->add_option("--elements", a.elements,
+  cmd->add_option("--elements", o.elements,
                   "Override the depth-averaged element count (0: length / cell size)");
 }
 
-// The scene's text, for the line of a key in a refusal after the parse.
-SceneSource source_of(const SceneArgs& a) {
-  if (a.path.empty()) return {"default.toml", std::string(default_scene_toml())};
-  return {a.path, read_scene_text(a.path)};
-}
+// The scene of the command line, and its text for the line of a key in a
+// refusal after the parse.
+struct LoadedScene {
+  SceneSource source;
+  Scene scene;
+};
 
-Scene load(const SceneArgs& a) {
-  Scene s = a.path.empty() ? parse_scene(default_scene_toml(), "default.toml")
-                           : load_scene_file(a.path);
-  apply_overrides(s, a.cell, a.ppc, a.end);
-  apply_method_overrides(s, a.method, a.shear_rate, a.elements);
-  apply_shape_override(s, a.shape);
-  return s;
+LoadedScene load(const SceneArgs& a) {
+  SceneSource source = cli::scene_source(a.path);
+  Scene scene = cli::load_scene(source, a.overrides);
+  return {std::move(source), std::move(scene)};
 }
 
 // A step count as an integer while it is one, so that a scene far beyond
@@ -173,12 +169,12 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
 constexpr double kWallEstimateSeconds = 0.1;
 
 int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args) {
-  require_memory(s, s.method, source);  // the more basic refusal comes first
-  require_cost(s, s.method, limits_for(limit_args, nullptr), source);
-  const MemoryEstimate memory = estimate_memory(s, s.method);
+  // The more basic refusal comes first.
+  const MemoryEstimate memory = require_memory(s, s.method, source);
+  require_cost(s, s.method, memory, limits_for(limit_args, nullptr), source);
   // The threads a run of the scene would use, for the wall-time estimate.
   cli::use_default_threads(memory.items);
-  const RunCost cost = estimate_cost(s, s.method);
+  const RunCost cost = estimate_cost(s, memory);
   Simulation sim(s);
   const double dt = sim.stable_dt();
   const int n = sim.particles().size();
@@ -336,10 +332,11 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
   RunOptions opt;
   opt.out_dir = out.empty() ? "out/" + s.name : out;
   opt.checkpoint_every = checkpoint_every;
-  require_memory(s, s.method, source);  // the more basic refusal comes first
-  require_cost(s, s.method, limits_for(limit_args, &opt.out_dir), source);
+  // The run's one memory estimate; the more basic refusal comes first.
+  opt.memory = require_memory(s, s.method, source);
+  require_cost(s, s.method, *opt.memory, limits_for(limit_args, &opt.out_dir), source);
   if (default_threads) {
-    cli::use_default_threads(estimate_memory(s, s.method).items);
+    cli::use_default_threads(opt.memory->items);
     if (backend == "cpu" && s.method == Method::Mpm) opt.adapt_threads = cli::adaptable_threads();
   }
   return execute([&](const RunOptions& o) { return runner(s, o); }, opt, quiet,
@@ -475,12 +472,17 @@ int main(int argc, char** argv) {
   if (threads > 0) omp_set_num_threads(threads);
   if (*run_cmd || *resume_cmd || *study_cmd) stop_on_signals();
   try {
-    if (*run_cmd)
-      return run(load(run_args), source_of(run_args), out, backend, quiet, checkpoint_every,
-                 run_limits, threads <= 0);
+    if (*run_cmd) {
+      const LoadedScene loaded = load(run_args);
+      return run(loaded.scene, loaded.source, out, backend, quiet, checkpoint_every, run_limits,
+                 threads <= 0);
+    }
     if (*resume_cmd) return resume(resume_dir, backend, quiet, threads <= 0);
-    if (*check_cmd && budget) return budget_check(load(check_args), *budget);
-    if (*check_cmd) return check(load(check_args), source_of(check_args), check_limits);
+    if (*check_cmd && budget) return budget_check(load(check_args).scene, *budget);
+    if (*check_cmd) {
+      const LoadedScene loaded = load(check_args);
+      return check(loaded.scene, loaded.source, check_limits);
+    }
     if (*study_cmd) return run_study(study_args);
     if (*verify_cmd) return verify(verify_dir);
     if (*analyse_cmd) return run_analyse(analyse_args);

@@ -4,9 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <stdexcept>
 #include <vector>
 
@@ -16,6 +14,7 @@
 #include "runout/analysis/result_columns.hpp"
 #include "runout/analysis/run_analysis.hpp"
 #include "runout/atomic_file.hpp"
+#include "runout/file_text.hpp"
 #include "runout/run_summary_file.hpp"
 #include "runout/scene_parser.hpp"
 #include "runout/study.hpp"
@@ -27,12 +26,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kReportFile = "report.html";
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 std::string chart_image(const std::string& alt, const std::string& svg) {
   return "<img class=\"chart\" alt=\"" + html::escape(alt) + "\" src=\"" +
@@ -137,10 +130,12 @@ std::string figures_section(const fs::path& out_dir) {
   if (pngs.empty())
     return out + "<p>None: <code>scripts/figures " + html::escape(out_dir.string()) +
            "</code> renders them, then run the report again.</p>\n";
-  for (const fs::path& png : pngs)
+  for (const fs::path& png : pngs) {
+    const std::string bytes = file_text_or_throw(png, "cannot read " + png.string());
     out += "<figure><img alt=\"" + html::escape(png.filename().string()) + "\" src=\"" +
-           html::data_uri("image/png", read_bytes(png)) + "\"><figcaption>" +
+           html::data_uri("image/png", bytes) + "\"><figcaption>" +
            html::escape(png.filename().string()) + "</figcaption></figure>\n";
+  }
   return out;
 }
 

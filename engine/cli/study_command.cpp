@@ -9,6 +9,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -22,6 +23,7 @@
 #include "runout/study.hpp"
 #include "child_process.hpp"
 #include "option_checks.hpp"
+#include "scene_loading.hpp"
 #include "study_parameters.hpp"
 #include "study_slurm.hpp"
 
@@ -134,16 +136,16 @@ void write_scenes(const StudyArgs& a, std::size_t points, std::vector<Variant>& 
   }
 }
 
-// The scene the child resolves from child_args, as `runout run` applies
-// its options (main.cpp's load): the hash its summary.json records, and
-// its size.
+// The scene the child resolves from child_args, as `runout run` loads it:
+// the hash its summary.json records, and its size.
 Scene child_scene(const RunSpec& r) {
-  Scene s = load_scene_file(r.variant->file);
   const bool mpm = r.method == "mpm";
-  apply_overrides(s, r.cell, mpm ? std::optional<int>(r.ppc) : std::nullopt);
-  apply_method_overrides(s, r.method, std::nullopt, std::nullopt);
-  apply_shape_override(s, mpm ? std::optional<std::string>(r.shape) : std::nullopt);
-  return s;
+  cli::SceneOverrides overrides;
+  overrides.cell = r.cell;
+  if (mpm) overrides.ppc = r.ppc;
+  overrides.method = r.method;
+  if (mpm) overrides.shape = r.shape;
+  return cli::load_scene(cli::scene_source(r.variant->file), overrides);
 }
 
 // The rows expand_matrix gives, counted before any scene is parsed: an
@@ -320,7 +322,7 @@ SlurmRequest slurm_request(const std::vector<std::size_t>& todo, const std::vect
     const Scene s = child_scene(runs[k]);
     const MemoryEstimate m = estimate_memory(s, s.method);
     req.memory_mib = std::max(req.memory_mib, kBaseMiB + 2.0 * m.bytes() / kMiB);
-    const double seconds = 2.0 * estimate_cost(s, s.method).steps * m.items /
+    const double seconds = 2.0 * estimate_cost(s, m).steps * m.items /
                            (kParticleStepsPerSecond * a.threads);
     req.minutes = std::max(req.minutes, kMinMinutes + seconds / 60.0);
   }
@@ -491,6 +493,219 @@ StudyArgs collected_args(const std::string& dir) {
   return a;
 }
 
+// The study's arguments: those given, or, with --collect DIR, those of the
+// study in DIR; nullopt, having said why, where DIR holds none.
+std::optional<StudyArgs> study_args(const StudyArgs& given) {
+  try {
+    return given.collect.empty() ? given : collected_args(given.collect);
+  } catch (const std::exception& e) {  // CLI11's parse errors are std::exceptions too
+    std::cerr << "runout study: " << e.what() << "\n";
+    return std::nullopt;
+  }
+}
+
+// The study folder made and locked for this process: one study per folder,
+// as a second would run the first's runs again and overwrite its
+// study.csv. 0, or (having said why) the exit code of a folder that is
+// busy or cannot be made.
+int lock_study_folder(const fs::path& dir) {
+  try {
+    fs::create_directories(dir / "runs");
+    lock_output_folder(dir.string());
+  } catch (const OutputFolderBusy& e) {
+    std::cerr << "runout study: " << e.what() << "\n";
+    return cli::kFolderBusy;
+  } catch (const std::exception& e) {
+    std::cerr << "runout study: " << e.what() << "\n";
+    return cli::kCantCreate;
+  }
+  return cli::kOk;
+}
+
+// The rows of the study: the runs of its matrix and what each gave.
+struct StudyRows {
+  std::vector<RunSpec> runs;
+  std::vector<RunResult> results;
+};
+
+// The study's arguments (unless collected) and its scenes, written beside
+// the runs.
+void write_inputs(const StudyArgs& a, std::size_t points, std::vector<Variant>& scenes,
+                  const fs::path& dir) {
+  if (a.collect.empty()) {
+    std::string words;
+    for (const std::string& w : args_words(a)) words += w + "\n";
+    write_file_atomically((dir / kArgsFile).string(), words);
+  }
+  write_scenes(a, points, scenes, dir);
+}
+
+// Each run's result; a skipped run's says why it was skipped.
+std::vector<RunResult> read_results(const std::vector<RunSpec>& runs, const fs::path& dir,
+                                    const std::vector<double>& times,
+                                    const std::vector<std::string>& why) {
+  std::vector<RunResult> results(runs.size());
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    if (runs[k].skip.empty())
+      results[k] = read_result(dir / "runs" / runs[k].id, runs[k].scene_hash, times, why[k]);
+    else
+      results[k].note = runs[k].skip;
+  }
+  return results;
+}
+
+// Writes the study's inputs into dir, runs what is not done yet and reads
+// every run's result into rows. 0, launch's exit code, or 73 (having said
+// why) where the folder cannot take them; a scene the study cannot take
+// throws SceneError, for main's exit code.
+int run_rows(const StudyArgs& a, const StudyParameters& params, std::vector<Variant>& scenes,
+             const fs::path& dir, StudyRows& rows) {
+  const int cores = std::max(1u, std::thread::hardware_concurrency());
+  const int jobs = a.jobs > 0 ? a.jobs : std::max(1, cores / a.threads);
+  try {
+    write_inputs(a, params.points.size(), scenes, dir);
+    rows.runs = expand_matrix(a, params.points.size(), scenes);
+    std::vector<std::string> why(rows.runs.size());
+    std::fprintf(stderr, "runout study: %d at a time, %d thread(s) each, into %s\n", jobs,
+                 a.threads, dir.c_str());
+    if (const int code = launch(rows.runs, a, dir, jobs, why); code != 0) return code;
+    rows.results = read_results(rows.runs, dir, a.times, why);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::cerr << "runout study: " << e.what() << "\n";
+    return cli::kCantCreate;
+  }
+  return cli::kOk;
+}
+
+// What the study makes of its rows: each row's errors against its
+// reference and the reference's id, whether it is on the Pareto front of
+// wall time against the end-runout error over all rows, and the observed
+// order of that error in its series (rows that differ only by cell size).
+struct RowAnalysis {
+  std::vector<std::vector<double>> errors;  // study::metric_errors; NaN: no reference
+  std::vector<std::string> reference;       // a run's id or "analytic-block"; empty: none
+  std::vector<bool> on_front;
+  std::vector<double> order;
+};
+
+// Each measured row's reference, the rigid block on its slope or the
+// finest MPM run of its place, and its errors against it.
+void row_errors(const StudyRows& rows, const std::vector<double>& times, RowAnalysis& out) {
+  const std::size_t n = rows.runs.size();
+  out.errors.assign(n, std::vector<double>(times.size() + 3, kNaN));
+  out.reference.assign(n, "");
+  for (std::size_t k = 0; k < n; ++k) {
+    const RunResult& r = rows.results[k];
+    if (!r.measured) continue;
+    if (const std::optional<study::RigidBlock>& block = rows.runs[k].variant->block) {
+      out.reference[k] = "analytic-block";
+      out.errors[k] = study::metric_errors(
+          r.metrics, study::rigid_block_metrics(*block, times, r.end_time));
+    } else if (const int j = finest_reference(rows.runs, rows.results, k); j >= 0) {
+      out.reference[k] = rows.runs[j].id;
+      out.errors[k] = study::metric_errors(r.metrics, rows.results[j].metrics);
+    }
+  }
+}
+
+// Whether row k takes part in the front and the orders: a run that ended
+// well, measured against another. A finest run is its own reference, with
+// no error to show.
+bool compared(const StudyRows& rows, const RowAnalysis& a, std::size_t k) {
+  return rows.results[k].status == "ok" && a.reference[k] != rows.runs[k].id;
+}
+
+// The end-runout error of each row that is compared; NaN for the others.
+std::vector<double> end_runout_errors(const StudyRows& rows, const RowAnalysis& a,
+                                      std::size_t end_error) {
+  std::vector<double> error(rows.runs.size(), kNaN);
+  for (std::size_t k = 0; k < error.size(); ++k)
+    if (compared(rows, a, k)) error[k] = a.errors[k][end_error];
+  return error;
+}
+
+// The rows on the Pareto front of wall time against `error`.
+std::vector<bool> pareto_rows(const StudyRows& rows, const RowAnalysis& a,
+                              const std::vector<double>& error) {
+  std::vector<double> cost(rows.runs.size(), kNaN);
+  for (std::size_t k = 0; k < cost.size(); ++k)
+    if (compared(rows, a, k)) cost[k] = rows.results[k].wall;
+  std::vector<bool> on_front(cost.size(), false);
+  for (int k : study::pareto_front(cost, error)) on_front[k] = true;
+  return on_front;
+}
+
+// The observed order of `error` in each row's series: the rows that differ
+// from it only by cell size.
+std::vector<double> observed_orders(const std::vector<RunSpec>& runs,
+                                    const std::vector<double>& error) {
+  const auto series = [&](std::size_t k) {
+    return std::make_tuple(runs[k].method, runs[k].backend, runs[k].shape, runs[k].ppc,
+                           runs[k].variant->point, runs[k].variant->domain_x_max,
+                           runs[k].variant->slope_angle);
+  };
+  std::vector<double> order(runs.size(), kNaN);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    std::vector<double> h, e;
+    for (std::size_t j = 0; j < runs.size(); ++j)
+      if (series(j) == series(k)) {
+        h.push_back(runs[j].cell);
+        e.push_back(error[j]);
+      }
+    order[k] = study::observed_order(h, e);
+  }
+  return order;
+}
+
+RowAnalysis analyse_rows(const StudyRows& rows, const std::vector<double>& times) {
+  RowAnalysis a;
+  row_errors(rows, times, a);
+  const std::vector<double> error = end_runout_errors(rows, a, times.size());
+  a.on_front = pareto_rows(rows, a, error);
+  a.order = observed_orders(rows.runs, error);
+  return a;
+}
+
+// study.csv: its header and a row per run.
+std::string study_csv(const std::vector<double>& times, const std::vector<std::string>& keys,
+                      const StudyRows& rows, const RowAnalysis& a) {
+  std::string csv = csv_header(times, keys);
+  for (std::size_t k = 0; k < rows.runs.size(); ++k)
+    csv += csv_row(rows.runs[k], rows.results[k], a.errors[k], a.on_front[k], a.order[k],
+                   a.reference[k]);
+  return csv;
+}
+
+// Writes study.csv into dir and names it; false, having said why, where it
+// cannot be written.
+bool write_study_csv(const fs::path& dir, const std::string& csv, std::size_t rows) {
+  const std::string csv_path = (dir / "study.csv").string();
+  try {
+    write_file_atomically(csv_path, csv);
+  } catch (const std::exception& e) {
+    std::cerr << "runout study: " << e.what() << "\n";
+    return false;
+  }
+  std::printf("study: %s (%zu rows)\n", csv_path.c_str(), rows);
+  return true;
+}
+
+// Names each row that did not end well; the study's exit code: as `runout
+// run` where a stop request ended it, 70 where a run failed.
+int study_exit(const StudyRows& rows) {
+  bool all_ran = true;
+  for (std::size_t k = 0; k < rows.runs.size(); ++k) {
+    const RunResult& r = rows.results[k];
+    all_ran = all_ran && (r.status == "ok" || r.status == "skipped");
+    if (r.status != "ok")
+      std::printf("  %s: %s: %s\n", rows.runs[k].id.c_str(), r.status.c_str(), r.note.c_str());
+  }
+  if (const int signal = stop_requested()) return cli::kSignalBase + signal;
+  return all_ran ? cli::kOk : cli::kBlowUp;
+}
+
 }  // namespace
 
 void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
@@ -551,19 +766,11 @@ void add_study_command(CLI::App& app, StudyArgs& a, CLI::App*& cmd) {
 }
 
 int run_study(const StudyArgs& given) {
-  StudyArgs a;
-  try {
-    a = given.collect.empty() ? given : collected_args(given.collect);
-  } catch (const std::exception& e) {  // CLI11's parse errors are std::exceptions too
-    std::cerr << "runout study: " << e.what() << "\n";
-    return cli::kNoScene;
-  }
-  const SceneSource base = [&]() -> SceneSource {
-    if (a.scene.empty()) return {"default.toml", std::string(default_scene_toml())};
-    std::string text = read_scene_text(a.scene);  // a regular file of a scene's size
-    parse_scene(text, a.scene);  // the scene's own refusals before the settings'
-    return {a.scene, std::move(text)};
-  }();
+  const std::optional<StudyArgs> args = study_args(given);
+  if (!args) return cli::kNoScene;
+  const StudyArgs& a = *args;
+  const SceneSource base = cli::scene_source(a.scene);
+  parse_scene(base.text, base.name);  // the scene's own refusals before the settings'
   const StudyParameters params =
       study_parameters(a.settings, a.vary, a.samples, a.seed, a.design);
   require_study_size(matrix_runs(a, params.points.size()),
@@ -573,112 +780,14 @@ int run_study(const StudyArgs& given) {
   std::vector<Variant> scenes = variants(a, base, params);
 
   const fs::path dir = a.out.empty() ? fs::path("out/study") / scenes[0].scene.name : fs::path(a.out);
-  const int cores = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = a.jobs > 0 ? a.jobs : std::max(1, cores / a.threads);
-  std::vector<RunSpec> runs;
-  std::vector<std::string> why;
-  std::vector<RunResult> results;
-  // One study per folder: a second would run the first's runs again and
-  // overwrite its study.csv.
-  try {
-    fs::create_directories(dir / "runs");
-    lock_output_folder(dir.string());
-  } catch (const OutputFolderBusy& e) {
-    std::cerr << "runout study: " << e.what() << "\n";
-    return cli::kFolderBusy;
-  } catch (const std::exception& e) {
-    std::cerr << "runout study: " << e.what() << "\n";
-    return cli::kCantCreate;
-  }
+  if (const int code = lock_study_folder(dir); code != cli::kOk) return code;
   const AdoptedFolderLock lock(dir.string());
-  try {
-    if (a.collect.empty()) {
-      std::string words;
-      for (const std::string& w : args_words(a)) words += w + "\n";
-      write_file_atomically((dir / kArgsFile).string(), words);
-    }
-    write_scenes(a, params.points.size(), scenes, dir);
-    runs = expand_matrix(a, params.points.size(), scenes);
-    why.resize(runs.size());
-    std::fprintf(stderr, "runout study: %d at a time, %d thread(s) each, into %s\n", jobs,
-                 a.threads, dir.c_str());
-    if (const int code = launch(runs, a, dir, jobs, why); code != 0) return code;
-    results.resize(runs.size());
-    for (std::size_t k = 0; k < runs.size(); ++k) {
-      if (runs[k].skip.empty())
-        results[k] = read_result(dir / "runs" / runs[k].id, runs[k].scene_hash, a.times, why[k]);
-      else
-        results[k].note = runs[k].skip;
-    }
-  } catch (const SceneError&) {
-    throw;  // main's exit code for a scene the study cannot take
-  } catch (const std::exception& e) {
-    std::cerr << "runout study: " << e.what() << "\n";
+  StudyRows rows;
+  if (const int code = run_rows(a, params, scenes, dir, rows); code != cli::kOk) return code;
+  const RowAnalysis analysis = analyse_rows(rows, a.times);
+  if (!write_study_csv(dir, study_csv(a.times, params.keys, rows, analysis), rows.runs.size()))
     return cli::kCantCreate;
-  }
-
-  // Each row's errors and reference, then the Pareto front of wall time
-  // against the end-runout error over all rows, and the observed order of
-  // that error per series (rows that differ only by cell size). A finest
-  // run is its own reference, with no error to show: it takes no part.
-  const std::size_t n = runs.size(), end_error = a.times.size();
-  std::vector<std::vector<double>> errors(n, std::vector<double>(a.times.size() + 3, kNaN));
-  std::vector<std::string> reference(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!results[k].measured) continue;
-    if (const std::optional<study::RigidBlock>& block = runs[k].variant->block) {
-      reference[k] = "analytic-block";
-      errors[k] = study::metric_errors(
-          results[k].metrics, study::rigid_block_metrics(*block, a.times, results[k].end_time));
-    } else if (const int j = finest_reference(runs, results, k); j >= 0) {
-      reference[k] = runs[j].id;
-      errors[k] = study::metric_errors(results[k].metrics, results[j].metrics);
-    }
-  }
-  std::vector<double> cost(n, kNaN), error(n, kNaN);
-  for (std::size_t k = 0; k < n; ++k)
-    if (results[k].status == "ok" && reference[k] != runs[k].id) {
-      cost[k] = results[k].wall;
-      error[k] = errors[k][end_error];
-    }
-  std::vector<bool> on_front(n, false);
-  for (int k : study::pareto_front(cost, error)) on_front[k] = true;
-  std::vector<double> order(n, kNaN);
-  const auto series = [&](std::size_t k) {
-    return std::make_tuple(runs[k].method, runs[k].backend, runs[k].shape, runs[k].ppc,
-                           runs[k].variant->point, runs[k].variant->domain_x_max,
-                           runs[k].variant->slope_angle);
-  };
-  for (std::size_t k = 0; k < n; ++k) {
-    std::vector<double> h, e;
-    for (std::size_t j = 0; j < n; ++j)
-      if (series(j) == series(k)) {
-        h.push_back(runs[j].cell);
-        e.push_back(error[j]);
-      }
-    order[k] = study::observed_order(h, e);
-  }
-
-  std::string csv = csv_header(a.times, params.keys);
-  bool all_ran = true;
-  for (std::size_t k = 0; k < n; ++k) {
-    all_ran = all_ran && (results[k].status == "ok" || results[k].status == "skipped");
-    csv += csv_row(runs[k], results[k], errors[k], on_front[k], order[k], reference[k]);
-  }
-  const std::string csv_path = (dir / "study.csv").string();
-  try {
-    write_file_atomically(csv_path, csv);
-  } catch (const std::exception& e) {
-    std::cerr << "runout study: " << e.what() << "\n";
-    return cli::kCantCreate;
-  }
-  std::printf("study: %s (%zu rows)\n", csv_path.c_str(), runs.size());
-  for (std::size_t k = 0; k < runs.size(); ++k)
-    if (results[k].status != "ok")
-      std::printf("  %s: %s: %s\n", runs[k].id.c_str(), results[k].status.c_str(),
-                  results[k].note.c_str());
-  if (const int signal = stop_requested()) return cli::kSignalBase + signal;  // as `runout run`
-  return all_ran ? cli::kOk : cli::kBlowUp;
+  return study_exit(rows);
 }
 
 }  // namespace runout

@@ -2,12 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 
 #include "child_process.hpp"
 #include "runout/atomic_file.hpp"
+#include "runout/file_text.hpp"
 #include "runout/run_control.hpp"
 
 namespace runout {
@@ -47,11 +46,6 @@ int sbatch(const std::vector<std::string>& args, const fs::path& out) {
     if (ended == pid) return exit_code(status);
     if (ended < 0) throw std::runtime_error("lost sbatch: waitpid failed");
   }
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace
@@ -94,7 +88,7 @@ int run_on_slurm(const fs::path& study_dir, const std::vector<SlurmElement>& ele
     // sbatch --wait exits non-zero when an element failed, which the
     // summaries tell apart; no job id means it refused the job.
     const int status = sbatch(args, out);
-    std::string id = read_text(out);
+    std::string id = file_text(out).value_or("");
     id = id.substr(0, id.find_first_of(";\n"));
     if (id.empty())
       throw std::runtime_error("sbatch refused the job array (exit " + std::to_string(status) +

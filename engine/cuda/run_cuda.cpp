@@ -2,6 +2,7 @@
 // The particles come back to the host for frames and history rows only.
 #include "../src/run_schedule.hpp"
 #include "runout/cuda_simulation.hpp"
+#include "runout/seeding.hpp"
 
 namespace runout {
 
@@ -19,7 +20,7 @@ auto host_copy(const CudaSimulation& sim, Particles& host) {
 
 RunSummary run_scene_cuda(const Scene& scene, const RunOptions& options) {
   const auto start = run_detail::Clock::now();
-  CudaSimulation sim(scene);
+  CudaSimulation sim(scene, seed_particles(scene, options.memory));
   Particles host;
   return run_detail::run_mpm(scene, options, start, sim, host_copy(sim, host));
 }

@@ -161,8 +161,8 @@ std::optional<double> available_memory() {
   return std::nullopt;
 }
 
-void require_memory(const Scene& scene, Method method, std::optional<double> available_bytes) {
-  const MemoryEstimate e = estimate_memory(scene, method);
+void require_memory(const Scene& scene, Method method, const MemoryEstimate& e,
+                    std::optional<double> available_bytes) {
   require_int_counts(scene, method, e);
   if (!available_bytes || e.bytes() <= *available_bytes) return;
   const std::string need = "the run needs about " + byte_text(e.bytes()) +
@@ -177,6 +177,10 @@ void require_memory(const Scene& scene, Method method, std::optional<double> ava
          number_text(e.grid_nodes) + " grid nodes of " + byte_text(e.node_bytes) +
          " (the domain grid.min to grid.max); raise grid.cell_size, lower grid.ppc or make the "
          "bodies smaller");
+}
+
+void require_memory(const Scene& scene, Method method, std::optional<double> available_bytes) {
+  require_memory(scene, method, estimate_memory(scene, method), available_bytes);
 }
 
 void require_memory(const Scene& scene, Method method) {
@@ -205,7 +209,7 @@ constexpr double kProfileRowBytes = 6 * 24;
 
 }  // namespace
 
-RunCost estimate_cost(const Scene& scene, Method method) {
+RunCost estimate_cost(const Scene& scene, const MemoryEstimate& memory) {
   RunCost c;
   const FastestWave fastest = fastest_p_wave(make_materials(scene));
   const double c_max = fastest.speed;
@@ -213,7 +217,7 @@ RunCost estimate_cost(const Scene& scene, Method method) {
   c.initial_dt = c_max > 0 ? scene.time.courant * scene.grid.cell_size / c_max : 0;
   c.steps = c.initial_dt > 0 ? scene.time.end / c.initial_dt : 0;
   c.frames = std::floor(scene.time.end / scene.time.output_interval) + 1;
-  const double items = estimate_memory(scene, method).items;
+  const double items = memory.items;
   const double bins = (scene.grid.max.x() - scene.grid.min.x()) / scene.grid.cell_size;
   c.output_bytes = c.frames * (items * kFrameFileBytesPerParticle + bins * kProfileRowBytes);
   return c;
@@ -240,9 +244,10 @@ std::string located(const std::string& key, const Scene& scene, const SceneSourc
 
 }  // namespace
 
-void require_memory(const Scene& scene, Method method, const SceneSource& source) {
+MemoryEstimate require_memory(const Scene& scene, Method method, const SceneSource& source) {
+  const MemoryEstimate estimate = estimate_memory(scene, method);
   try {
-    require_memory(scene, method);
+    require_memory(scene, method, estimate, available_memory());
   } catch (const SceneError& e) {
     // The refusals name their key first: "grid.cell_size: ...".
     const std::string what = e.what();
@@ -252,11 +257,12 @@ void require_memory(const Scene& scene, Method method, const SceneSource& source
     const std::string key = located(what.substr(0, colon), scene, source, line);
     throw SceneError(key + what.substr(colon), line);
   }
+  return estimate;
 }
 
-void require_cost(const Scene& scene, Method method, const CostLimits& limits,
-                  const SceneSource& source) {
-  const RunCost c = estimate_cost(scene, method);
+void require_cost(const Scene& scene, Method method, const MemoryEstimate& memory,
+                  const CostLimits& limits, const SceneSource& source) {
+  const RunCost c = estimate_cost(scene, memory);
   int line = 0;
   // The depth-averaged model steps with its own, much longer, time step.
   if (method != Method::Dam && c.steps > limits.max_steps) {
@@ -273,7 +279,7 @@ void require_cost(const Scene& scene, Method method, const CostLimits& limits,
   if (c.output_bytes > limits.max_output_bytes) {
     const std::string key = located("time.output_interval", scene, source, line);
     throw SceneError(key + ": the run writes about " + number_text(c.frames) +
-                         " frames of " + number_text(estimate_memory(scene, method).items) +
+                         " frames of " + number_text(memory.items) +
                          (method == Method::Dam ? " elements" : " particles") + ", about " +
                          byte_text(c.output_bytes) + " uncompressed, more than " +
                          limits.output_limit_is + " of " + byte_text(limits.max_output_bytes) +

@@ -4,14 +4,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "runout/atomic_file.hpp"
+#include "runout/file_text.hpp"
 #include "runout/vtu_writer.hpp"
 
 namespace runout {
@@ -30,12 +29,6 @@ std::string xml_attribute(const std::string& text) {
     }
   }
   return out;
-}
-
-std::string read_whole(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 std::string folder_of(const std::string& pvd_path) {
@@ -68,11 +61,8 @@ FrameSum sum_of(const std::string& bytes) {
 // than failing the run.
 FrameSum frame_sum(const std::string& folder, const std::string& file) {
   // Only a regular file is a frame: a device behind the name would never end.
-  std::error_code ignored;
-  if (!std::filesystem::is_regular_file(in_folder(folder, file), ignored)) return {0, "unreadable"};
-  std::ifstream in(in_folder(folder, file), std::ios::binary);
-  if (!in) return {0, "unreadable"};
-  return sum_of(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+  const std::optional<std::string> bytes = regular_file_text(in_folder(folder, file));
+  return bytes ? sum_of(*bytes) : FrameSum{0, "unreadable"};
 }
 
 // The value of attribute `key` in the element text `tag`, if it has one.
@@ -109,7 +99,7 @@ void PvdIndex::add(double time, const std::string& relative_file) {
 }
 
 PvdIndex::Entries read_pvd_entries(const std::string& pvd_path) {
-  const std::string text = read_whole(pvd_path);
+  const std::string text = file_text_or_throw(pvd_path, "cannot read " + pvd_path);
   PvdIndex::Entries entries;
   for (auto at = text.find("<DataSet"); at != std::string::npos; at = text.find("<DataSet", at)) {
     const auto end = text.find('>', at);
@@ -127,7 +117,8 @@ PvdIndex::Entries read_pvd_entries(const std::string& pvd_path) {
 }
 
 FrameManifest::FrameManifest(const std::string& pvd_path) : folder_(folder_of(pvd_path)) {
-  std::istringstream manifest(read_whole(manifest_path(pvd_path)));
+  const std::string path = manifest_path(pvd_path);
+  std::istringstream manifest(file_text_or_throw(path, "cannot read " + path));
   std::string file;
   Sum sum;
   while (manifest >> file >> sum.size >> sum.crc) recorded_[file] = sum;
@@ -148,17 +139,17 @@ std::string FrameManifest::problem(const std::string& file) const {
   std::error_code ignored;
   if (!std::filesystem::is_regular_file(in_folder(folder_, file), ignored)) return "missing";
   if (!recorded_.count(file)) return "not in the manifest";
-  return problem(file, read_whole(in_folder(folder_, file)));
+  const std::string path = in_folder(folder_, file);
+  return problem(file, file_text_or_throw(path, "cannot read " + path));
 }
 
 std::string read_listed_frame(const std::string& folder, const std::string& file,
                               const FrameManifest* manifest, std::string& bytes) {
   const std::string path = in_folder(folder, file);
+  std::optional<std::string> text = regular_file_text(path);
   std::error_code ignored;
-  std::ifstream in(path, std::ios::binary);
-  if (!in || !std::filesystem::is_regular_file(path, ignored))
-    return std::filesystem::exists(path, ignored) ? "cannot be read" : "missing";
-  bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (!text) return std::filesystem::exists(path, ignored) ? "cannot be read" : "missing";
+  bytes = std::move(*text);
   if (!manifest) return "";
   const std::string mismatch = manifest->problem(file, bytes);
   return mismatch.empty() ? "" : "does not match the manifest: " + mismatch;

@@ -4,6 +4,7 @@
 
 #include "run_schedule.hpp"
 #include "runout/dam_output.hpp"
+#include "runout/seeding.hpp"
 
 namespace runout {
 
@@ -11,7 +12,7 @@ using namespace run_detail;
 
 RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const auto start = Clock::now();
-  Simulation sim(scene);
+  Simulation sim(scene, seed_particles(scene, options.memory));
   return run_mpm(scene, options, start, sim, [&]() -> const Particles& { return sim.particles(); });
 }
 
@@ -61,8 +62,13 @@ RunSummary run_dam(const Scene& scene, const RunOptions& options) {
     const HistoryRow row = dam_history_row(dam, initial_toe);
     return rest.at_rest(row.time, row.toe_velocity, row.centroid_velocity);
   };
-  run_schedule(scene, options, start, dam, 0, record, write_frame, 0, [](long) {}, at_rest,
-               summary);
+  run_schedule(dam, {.scene = scene,
+                     .options = options,
+                     .start = start,
+                     .record = record,
+                     .write_frame = write_frame,
+                     .at_rest = at_rest,
+                     .summary = summary});
   return summary;
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -163,7 +164,7 @@ enum class Interrupt { None, AtRest, Stop };
 // fall on the first step past each multiple of probe_every, which depends
 // on the step alone, not on where the run was started or resumed.
 template <class Model, class AtRest>
-Interrupt advance_watching(Model& model, double t, double probe_every, AtRest at_rest) {
+Interrupt advance_watching(Model& model, double t, double probe_every, const AtRest& at_rest) {
   while (model.time() < t) {
     const double before = model.time();
     step_toward(model, t);
@@ -186,41 +187,54 @@ inline long checkpoint_rows(const Scene& scene, double every) {
 
 // The schedule every method follows: a history row every output interval /
 // kHistoryPerFrame, a frame every output interval, at the end and at rest.
-// record() appends a row and says whether the slide is at rest; at_rest()
-// tests it between rows (rest_probe_interval), and a slide found at rest
-// there gets its last row and frame at once. A fresh run (first_row 0)
-// starts with frame 0 and row 0 at t = 0; a resumed one goes on after the
-// row of its checkpoint, from the time of its checkpoint. checkpoint(k)
-// follows every checkpoint_rows-th row k but the last (a run that reaches
-// it is done) and one at rest; a stop request (a signal) ends the run at
-// the next step with checkpoint(k) of the last row written.
-template <class Model, class Record, class WriteFrame, class Checkpoint, class AtRest>
-void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_point start,
-                  Model& model, long first_row, Record record, WriteFrame write_frame,
-                  long every, Checkpoint checkpoint, AtRest at_rest, RunSummary& summary) {
+// A fresh run (first_row 0) starts with frame 0 and row 0 at t = 0; a
+// resumed one goes on after the row of its checkpoint, from the time of
+// its checkpoint. A slide found at rest, at a row or between rows, gets its
+// last row and frame at once. Checkpoints follow every
+// checkpoint_every-th row but the last (a run that reaches it is done) and
+// one at rest; a stop request (a signal) ends the run at the next step
+// with the checkpoint of the last row written.
+struct Schedule {
+  const Scene& scene;
+  const RunOptions& options;  // on_progress, on_finished
+  Clock::time_point start;    // of the run, for its wall time
+  long first_row = 0;         // the checkpoint's row of a resumed run; 0: a fresh run
+  std::function<bool()> record;       // appends a history row; whether the slide is at rest
+  std::function<void()> write_frame;  // writes the next frame
+  long checkpoint_every = 0;          // in rows (checkpoint_rows); 0: none
+  std::function<void(long)> checkpoint = [](long) {};  // the checkpoint of row k
+  std::function<bool()> at_rest;  // the test between rows (rest_probe_interval)
+  RunSummary& summary;            // the run's outcome, steps and times filled in
+};
+
+template <class Model>
+void run_schedule(Model& model, const Schedule& s) {
+  const Scene& scene = s.scene;
+  RunSummary& summary = s.summary;
   const long first_step = model.steps();
-  if (first_row == 0) {
-    write_frame();
-    record();
+  if (s.first_row == 0) {
+    s.write_frame();
+    s.record();
   }
   const double dt_history = history_interval(scene);
   const long rows = std::lround(std::ceil(scene.time.end / dt_history - 1e-9));
   try {
     const double probe_every = rest_probe_interval(scene);
-    for (long k = first_row + 1; k <= rows; ++k) {
+    for (long k = s.first_row + 1; k <= rows; ++k) {
       const Interrupt why = advance_watching(model, std::min(scene.time.end, k * dt_history),
-                                             probe_every, at_rest);
+                                             probe_every, s.at_rest);
       if (why == Interrupt::Stop) {
-        checkpoint(k - 1);
+        s.checkpoint(k - 1);
         mark_stopped(stop_requested());
         break;
       }
-      summary.at_rest = record() || why == Interrupt::AtRest;
-      if (k % kHistoryPerFrame == 0 || k == rows || summary.at_rest) write_frame();
-      if (options.on_progress)
-        options.on_progress({model.time(), scene.time.end, model.steps(), seconds_since(start)});
+      summary.at_rest = s.record() || why == Interrupt::AtRest;
+      if (k % kHistoryPerFrame == 0 || k == rows || summary.at_rest) s.write_frame();
+      if (s.options.on_progress)
+        s.options.on_progress(
+            {model.time(), scene.time.end, model.steps(), seconds_since(s.start)});
       if (summary.at_rest) break;
-      if (every > 0 && k % every == 0 && k < rows) checkpoint(k);
+      if (s.checkpoint_every > 0 && k % s.checkpoint_every == 0 && k < rows) s.checkpoint(k);
     }
   } catch (const NumericalFailure& e) {
     summary.failed = true;
@@ -229,8 +243,8 @@ void run_schedule(const Scene& scene, const RunOptions& options, Clock::time_poi
   summary.steps = model.steps();
   summary.steps_run = summary.steps - first_step;
   summary.end_time = model.time();
-  summary.wall_seconds = seconds_since(start);
-  if (options.on_finished) options.on_finished(summary);
+  summary.wall_seconds = seconds_since(s.start);
+  if (s.options.on_finished) s.options.on_finished(summary);
 }
 
 // A checkpoint's frame count is the schedule's for its row: frame 0, then
@@ -436,8 +450,16 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
   }
   // The steps themselves, or the same steps on the threads a governor picks.
   const auto schedule = [&](auto& steps) {
-    run_schedule(scene, options, start, steps, resumed ? resumed->row : 0, record, write_frame,
-                 every, checkpoint, at_rest, summary);
+    run_schedule(steps, {.scene = scene,
+                         .options = options,
+                         .start = start,
+                         .first_row = resumed ? resumed->row : 0,
+                         .record = record,
+                         .write_frame = write_frame,
+                         .checkpoint_every = every,
+                         .checkpoint = checkpoint,
+                         .at_rest = at_rest,
+                         .summary = summary});
   };
   if (options.adapt_threads > 1) {
     GovernedSteps<Driver> governed(sim, options.adapt_threads);

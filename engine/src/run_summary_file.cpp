@@ -4,14 +4,13 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <stdexcept>
 
 #include "runout/atomic_file.hpp"
 #include "runout/checkpoint.hpp"
+#include "runout/file_text.hpp"
 #include "runout/study.hpp"
 
 namespace runout {
@@ -19,12 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read '" + path.string() + "'");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 std::string json_string(const std::string& s) {
   std::string out = "\"";
@@ -152,7 +145,9 @@ RunRecord make_run_record(const RunSummary& summary, const std::string& out_dir,
                           int stop_signal, double peak_memory_mib, const std::string& mechanism) {
   const fs::path dir(out_dir);
   RunRecord r;
-  r.scene_hash = scene_hash_text(read_text(dir / "scene.resolved.toml"));
+  const fs::path resolved = dir / "scene.resolved.toml";
+  r.scene_hash =
+      scene_hash_text(file_text_or_throw(resolved, "cannot read '" + resolved.string() + "'"));
   if (summary.failed) {
     r.status = "blown_up";
     r.note = summary.failure;
@@ -235,7 +230,8 @@ void write_run_record(const std::string& out_dir, const RunRecord& record) {
 
 RunRecord read_run_record(const std::string& out_dir) {
   const fs::path path = fs::path(out_dir) / kSummaryFile;
-  return parse_run_record(read_text(path), path.string());
+  return parse_run_record(file_text_or_throw(path, "cannot read '" + path.string() + "'"),
+                          path.string());
 }
 
 }  // namespace runout

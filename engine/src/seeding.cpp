@@ -82,8 +82,8 @@ std::string spacing_text(double spacing) {
 
 }  // namespace
 
-Particles seed_particles(const Scene& scene) {
-  require_memory(scene, Method::Mpm);
+Particles seed_particles(const Scene& scene, const std::optional<MemoryEstimate>& checked) {
+  if (!checked) require_memory(scene, Method::Mpm);
   std::vector<Seed> seeds;
   for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
     const std::size_t before = seeds.size();

@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
 
+#include "runout/file_text.hpp"
 #include "runout/polygon.hpp"
 #include "runout/scene_parser.hpp"
 #include "scene_text.hpp"
@@ -71,10 +70,7 @@ History parse_history(std::string_view csv, const std::string& source) {
 }
 
 History read_history(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read '" + path + "'");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  return parse_history(text, path);
+  return parse_history(file_text_or_throw(path, "cannot read '" + path + "'"), path);
 }
 
 double value_at(const std::vector<double>& time, const std::vector<double>& value, double t,

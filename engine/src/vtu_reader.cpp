@@ -7,11 +7,10 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <utility>
 
+#include "runout/file_text.hpp"
 #include "runout/vtk_xml.hpp"
 
 namespace runout {
@@ -305,11 +304,10 @@ VtuFrame parse_vtu_frame(std::string_view xml) {
 }
 
 VtuFrame read_vtu_frame(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw VtuReadError(path + ": cannot be read");
-  const std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::optional<std::string> xml = file_text(path);
+  if (!xml) throw VtuReadError(path + ": cannot be read");
   try {
-    return parse_vtu_frame(xml);
+    return parse_vtu_frame(*xml);
   } catch (const VtuReadError& e) {
     throw VtuReadError(path + ": " + e.what());
   }

@@ -4,7 +4,9 @@
 // fit in this machine's available memory or whose counts overflow an int
 // (particles, grid nodes and elements are indexed by int). seed_particles
 // and DamSolver call require_memory first, so every run, check and study
-// is refused before it allocates; `runout check` prints the estimate.
+// is refused before it allocates; `runout check` prints the estimate. A
+// run of the CLI makes its estimate once and passes it on: to the cost
+// estimate, the thread count and the seeding (RunOptions::memory).
 #include <optional>
 #include <string>
 
@@ -31,9 +33,14 @@ MemoryEstimate estimate_memory(const Scene& scene, Method method);
 // MemAvailable of /proc/meminfo in bytes; nullopt where it cannot be read.
 std::optional<double> available_memory();
 
-// Throws SceneError (line 0) when a count overflows int, or when
-// available_bytes is given and the estimate exceeds it; the message gives
-// the estimate, the memory available and the keys that drive it.
+// Throws SceneError (line 0) when a count of `estimate`, the estimate of
+// (scene, method), overflows int, or when available_bytes is given and the
+// estimate exceeds it; the message gives the estimate, the memory
+// available and the keys that drive it.
+void require_memory(const Scene& scene, Method method, const MemoryEstimate& estimate,
+                    std::optional<double> available_bytes);
+
+// require_memory of estimate_memory(scene, method).
 void require_memory(const Scene& scene, Method method, std::optional<double> available_bytes);
 
 // require_memory against available_memory().
@@ -56,7 +63,9 @@ struct RunCost {
   double output_bytes = 0;  // the frames uncompressed, with their profiles
   std::string stiffest;     // the material whose P-wave sets initial_dt
 };
-RunCost estimate_cost(const Scene& scene, Method method);
+// `memory`: estimate_memory of the scene and the run's method, whose count
+// sizes the frames.
+RunCost estimate_cost(const Scene& scene, const MemoryEstimate& memory);
 
 struct CostLimits {
   double max_steps = 1e8;                    // at a few M particle-steps/s, days of work
@@ -76,16 +85,17 @@ struct SceneSource {
 
 // require_memory(scene, method) with the refusal placed at the line of
 // the key it names in source ("scene.toml:7: grid.cell_size: ..."), as the
-// parser's errors are.
-void require_memory(const Scene& scene, Method method, const SceneSource& source);
+// parser's errors are. Returns the estimate it passed, the run's one.
+MemoryEstimate require_memory(const Scene& scene, Method method, const SceneSource& source);
 
 // Throws SceneError when the MPM run needs more steps than
 // limits.max_steps (naming time.end, the step and what sets it) or writes
 // more than limits.max_output_bytes (naming time.output_interval, the
 // frames and their size). The message gives the key's line in source, as
 // the parser's errors do, unless an override set the key (line 0 then).
-void require_cost(const Scene& scene, Method method, const CostLimits& limits,
-                  const SceneSource& source = {});
+// `memory`: estimate_memory(scene, method).
+void require_cost(const Scene& scene, Method method, const MemoryEstimate& memory,
+                  const CostLimits& limits, const SceneSource& source = {});
 
 // The bytes free to an unprivileged writer on the file system that holds
 // path (its nearest existing folder); nullopt where statvfs fails.

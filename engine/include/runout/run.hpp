@@ -2,8 +2,10 @@
 // A whole run of a scene into an output folder: frames, PVD index, history
 // and the resolved scene. The CLI is a thin layer over run_scene.
 #include <functional>
+#include <optional>
 #include <string>
 
+#include "runout/memory_estimate.hpp"
 #include "runout/scene.hpp"
 
 namespace runout {
@@ -32,6 +34,10 @@ struct RunOptions {
   // fastest now (thread_governor.hpp); the results are the same. 0: on
   // OpenMP's count.
   int adapt_threads = 0;
+  // The memory estimate of the run, already passed by require_memory (the
+  // CLI's one estimate of a run): the MPM seeding does not make it again.
+  // Empty: the run estimates and checks it itself.
+  std::optional<MemoryEstimate> memory;
 };
 
 struct RunSummary {

@@ -1,4 +1,7 @@
 #pragma once
+#include <optional>
+
+#include "runout/memory_estimate.hpp"
 #include "runout/particles.hpp"
 #include "runout/scene.hpp"
 
@@ -13,7 +16,10 @@ namespace runout {
 // Stress starts at zero; x0/y0 = position; ids run 0..n-1 in body order.
 // Throws SceneError, before allocating, for a scene whose particles would
 // not fit in memory or overflow int (require_memory), and for a body that
-// holds no particle.
-Particles seed_particles(const Scene& scene);
+// holds no particle. `checked`: the scene's MPM memory estimate where
+// require_memory has passed it already (a run's one estimate), so that it
+// is not made and checked again.
+Particles seed_particles(const Scene& scene,
+                         const std::optional<MemoryEstimate>& checked = std::nullopt);
 
 }  // namespace runout
