@@ -32,10 +32,13 @@ RUNOUT_HD inline void constrain(const GridView& g, const StepConfig& c, int n, d
 
 // Whether node n lies on or inside the rigid base, and the base's outward
 // normal there. The tolerance keeps nodes on a planar base line in contact
-// despite the rounding of their coordinates.
+// despite the rounding of their coordinates. Only a node whose gap p2g
+// lowered can be: every particle that reaches a node on or inside the base
+// lies near enough to it to lower the node's gap (p2g), so a gap left at
+// +infinity spares the search along the base.
 RUNOUT_HD inline bool base_contact_normal(const GridView& g, const StepConfig& c, int n,
                                           double& nx, double& ny) {
-  if (c.base.kind == BaseKind::None) return false;
+  if (c.base.kind == BaseKind::None || !(g.gap[n] < INFINITY)) return false;
   const BasePoint b =
       locate_on_base(c.base, g.ox + (n % g.nx) * g.h, g.oy + (n / g.nx) * g.h);
   nx = b.nx;
