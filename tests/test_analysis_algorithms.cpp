@@ -23,6 +23,7 @@
 #include "runout/analysis/plastic_strain.hpp"
 #include "runout/analysis/result_columns.hpp"
 #include "runout/analysis/shear_bands.hpp"
+#include "runout/polygon.hpp"
 
 using namespace runout::analysis;
 using namespace runout::lattice_fixtures;
@@ -244,24 +245,84 @@ BlockParameters block_parameters(double h) {
   return p;
 }
 
-std::vector<SlideBlock> blocks_of(const Slab& slab) {
-  const Lattice lattice = make_lattice(slab);
+std::vector<SlideBlock> blocks_of_lattice(const Lattice& lattice, double h) {
   const runout::Base base = x_axis();
   const std::vector<ShearBand> bands =
-      find_shear_bands(lattice.points, lattice.xi, base.view(), band_parameters(slab.h));
+      find_shear_bands(lattice.points, lattice.xi, base.view(), band_parameters(h));
   const std::vector<double> displacement(lattice.points.size(), 1.5);
-  return find_blocks(lattice.points, displacement, bands, base.view(), block_parameters(slab.h));
+  return find_blocks(lattice.points, displacement, bands, base.view(), block_parameters(h));
+}
+
+// Sign changes of the vertical direction along a closed outline, going
+// round once: 2 for an outline whose top and bottom each run one way.
+int vertical_reversals(const std::vector<Vec2>& outline) {
+  std::vector<int> signs;
+  for (size_t k = 0; k < outline.size(); ++k) {
+    const double dy = outline[(k + 1) % outline.size()].y - outline[k].y;
+    if (std::abs(dy) > 1e-9) signs.push_back(dy > 0 ? 1 : -1);
+  }
+  int reversals = 0;
+  for (size_t k = 0; k < signs.size(); ++k) reversals += signs[k] != signs[(k + 1) % signs.size()];
+  return reversals;
+}
+
+double outline_length(const std::vector<Vec2>& outline) {
+  double length = 0;
+  for (size_t k = 0; k < outline.size(); ++k) {
+    const Vec2 a = outline[k], b = outline[(k + 1) % outline.size()];
+    length += std::hypot(b.x - a.x, b.y - a.y);
+  }
+  return length;
+}
+
+double outline_area(const std::vector<Vec2>& outline) {
+  double area = 0;
+  for (size_t k = 0; k < outline.size(); ++k) {
+    const Vec2 a = outline[k], b = outline[(k + 1) % outline.size()];
+    area += 0.5 * (a.x * b.y - b.x * a.y);
+  }
+  return area;
+}
+
+std::string outline_defect_of(const std::vector<Vec2>& outline) {
+  runout::Polygon polygon;
+  for (const Vec2& v : outline) polygon.emplace_back(v.x, v.y);
+  return runout::outline_defect(polygon);
+}
+
+// The lattice without the particles for which `drop` is true.
+Lattice without(const Lattice& full, const std::function<bool(Vec2)>& drop) {
+  Lattice lattice;
+  for (size_t i = 0; i < full.points.size(); ++i) {
+    if (drop(full.points[i])) continue;
+    lattice.points.push_back(full.points[i]);
+    lattice.xi.push_back(full.xi[i]);
+  }
+  return lattice;
+}
+
+bool has_vertex_near(const std::vector<Vec2>& outline, Vec2 q, double tolerance) {
+  return std::any_of(outline.begin(), outline.end(), [&](const Vec2& v) {
+    return std::hypot(v.x - q.x, v.y - q.y) <= tolerance;
+  });
+}
+
+std::vector<SlideBlock> blocks_of(const Slab& slab) { return blocks_of_lattice(make_lattice(slab), slab.h); }
+
+// / and \: a wedge 4 m wide at the top, 14 m at the base, raised 0.5 m
+// (narrowing on upwards between the flanks).
+Slab horst_slab() {
+  Slab slab;
+  slab.length = 40;
+  slab.bands = {{18.0, -45.0, 0.4}, {22.0, 45.0, 0.4}};
+  slab.top = [](double x) { return x > 18.5 && x < 21.5 ? 5.5 : 5.0; };
+  return slab;
 }
 
 }  // namespace
 
 TEST(HorstGraben, HorstBetweenBandsDippingAway) {
-  // / and \: a wedge 4 m wide at the top, 14 m at the base, raised 0.5 m
-  // (narrowing on upwards between the flanks).
-  Slab slab;
-  slab.length = 40;
-  slab.bands = {{18.0, -45.0, 0.4}, {22.0, 45.0, 0.4}};
-  slab.top = [](double x) { return x > 18.5 && x < 21.5 ? 5.5 : 5.0; };
+  const Slab slab = horst_slab();
   const std::vector<SlideBlock> blocks = blocks_of(slab);
   ASSERT_EQ(blocks.size(), 3u);
   EXPECT_EQ(blocks[0].type, BlockType::Block);
@@ -287,12 +348,72 @@ TEST(HorstGraben, HorstBetweenBandsDippingAway) {
 
   // The outline: a closed polygon around the horst's particles.
   ASSERT_GE(horst.outline.size(), 8u);
-  double area = 0;
-  for (size_t k = 0; k < horst.outline.size(); ++k) {
-    const Vec2 a = horst.outline[k], b = horst.outline[(k + 1) % horst.outline.size()];
-    area += 0.5 * (a.x * b.y - b.x * a.y);
-  }
+  const double area = outline_area(horst.outline);
   EXPECT_NEAR(area, horst.particles * slab.h * slab.h, 0.1 * area);  // counter-clockwise
+}
+
+TEST(HorstGraben, OutlinesFollowTheSurfaceNotTheGapsBetweenColumns) {
+  // The horst's slab with its particle columns drawn apart as a spreading
+  // slide leaves them: of every four columns, two have lost their top
+  // 0.3 m. The outlines must follow the slide's surface (flat, with the
+  // horst's raised top) and the bands, not comb down into the gaps.
+  const Slab slab = horst_slab();
+  const std::vector<SlideBlock> blocks =
+      blocks_of_lattice(without(make_lattice(slab),
+                                [&](Vec2 q) {
+                                  const int column = static_cast<int>(q.x / slab.h);
+                                  return (column / 2) % 2 == 1 && q.y > slab.top(q.x) - 3 * slab.h;
+                                }),
+                        slab.h);
+  ASSERT_EQ(blocks.size(), 3u);
+  ASSERT_EQ(blocks[1].type, BlockType::Horst);
+  for (const SlideBlock& block : blocks) {
+    ASSERT_GE(block.outline.size(), 4u);
+    EXPECT_EQ(outline_defect_of(block.outline), "") << block.start_s;
+    // The old outline stepped down and up at every other bin: dozens of
+    // reversals, and longer than the box around the block.
+    EXPECT_LE(vertical_reversals(block.outline), 2) << block.start_s;
+    EXPECT_LT(outline_length(block.outline), 2 * (block.width + block.top)) << block.start_s;
+    for (const Vec2& v : block.outline) {
+      EXPECT_GE(v.y, -1e-9);
+      EXPECT_LE(v.y, block.top + 1e-9);  // no higher than the surface over the block
+    }
+  }
+  // The horst's flanks are its bands: from the base at 13 m and 27 m up to
+  // where they meet the surface, 5 m high, at 18 m and 22 m; the blocks
+  // beside it share those edges.
+  const SlideBlock& horst = blocks[1];
+  for (const Vec2 corner : {Vec2{13, 0}, Vec2{27, 0}, Vec2{18, 5}, Vec2{22, 5}}) {
+    EXPECT_TRUE(has_vertex_near(horst.outline, corner, 0.3)) << corner.x << ", " << corner.y;
+    for (const Vec2& v : horst.outline) {
+      if (std::hypot(v.x - corner.x, v.y - corner.y) > 0.3) continue;
+      EXPECT_TRUE(has_vertex_near(blocks[corner.x < 20 ? 0 : 2].outline, v, 1e-9))
+          << v.x << ", " << v.y;
+    }
+  }
+}
+
+TEST(HorstGraben, OutlineAcrossAGapRunsAlongTheBase) {
+  // The rear block of the horst's slab with its particles between 5 m and
+  // 7 m gone (ten bins: wider than the surface's closing): one block whose
+  // outline encloses its two parts and runs along the base between them.
+  const Slab slab = horst_slab();
+  const Lattice lattice = without(make_lattice(slab), [](Vec2 q) { return q.x > 5 && q.x < 7; });
+  const std::vector<SlideBlock> blocks = blocks_of_lattice(lattice, slab.h);
+  ASSERT_EQ(blocks.size(), 3u);
+  const SlideBlock& rear = blocks[0];
+  EXPECT_NEAR(outline_area(rear.outline), rear.particles * slab.h * slab.h,
+              0.05 * outline_area(rear.outline));
+  bool on_base_in_gap = false;
+  for (const Vec2& v : rear.outline) {
+    EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y));
+    EXPECT_GE(v.y, -1e-9);
+    if (v.x > 5.2 && v.x < 6.8) {
+      EXPECT_NEAR(v.y, 0, 1e-9);
+      on_base_in_gap = true;
+    }
+  }
+  EXPECT_TRUE(on_base_in_gap || has_vertex_near(rear.outline, {5.0, 0.0}, 0.3));
 }
 
 TEST(HorstGraben, GrabenBetweenBandsConvergingDownwards) {

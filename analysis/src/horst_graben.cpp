@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "runout/morphology.hpp"
+#include "runout/particles.hpp"
 
 namespace runout::analysis {
 
@@ -12,24 +13,22 @@ namespace {
 
 constexpr double kDegree = 3.14159265358979323846 / 180;
 
-// Per along-base bin of width `width` from s0: the lowest and highest d of
-// the particles in it (an empty bin has lo > hi).
+// Per along-base bin of width `width` from s0: the highest d of the
+// particles in it (-infinity in an empty bin).
 struct BinnedHeights {
   double s0 = 0, width = 1;
-  std::vector<double> lo, hi;
+  std::vector<double> hi;
 
   BinnedHeights(double s0_, double width_, double s_max) : s0(s0_), width(width_) {
     const size_t bins = static_cast<size_t>((s_max - s0) / width) + 1;
-    lo.assign(bins, std::numeric_limits<double>::infinity());
     hi.assign(bins, -std::numeric_limits<double>::infinity());
   }
   size_t bin(double s) const {
-    return std::min(lo.size() - 1, static_cast<size_t>(std::max(0.0, (s - s0) / width)));
+    return std::min(hi.size() - 1, static_cast<size_t>(std::max(0.0, (s - s0) / width)));
   }
   void add(double s, double d) {
-    const size_t b = bin(s);
-    lo[b] = std::min(lo[b], d);
-    hi[b] = std::max(hi[b], d);
+    double& b = hi[bin(s)];
+    b = std::max(b, d);
   }
 };
 
@@ -97,39 +96,166 @@ int block_of(const runout::BasePoint& at, const std::vector<BoundaryBand>& bound
   return j;
 }
 
-// Closed outline of a block: in along-base bins, the bottom of its particles
-// from rear to front, then their top from front to rear, each bin a flat
-// step between its edges (half a spacing beyond the particle centres).
-std::vector<Vec2> block_outline(const std::vector<int>& members,
-                                const std::vector<runout::BasePoint>& at, const SlideBlock& block,
-                                const runout::BaseView& base, const BlockParameters& p) {
-  const double half = 0.5 * p.spacing;
-  BinnedHeights heights(block.start_s, p.outline_bin * p.spacing, block.end_s);
-  for (const int i : members) heights.add(at[i].s, at[i].d);
-  std::vector<Vec2> ring, top;  // (s, d)
-  for (size_t b = 0; b < heights.lo.size(); ++b) {
-    if (heights.lo[b] > heights.hi[b]) continue;
-    const double s_lo = heights.s0 + b * heights.width;
-    const double s_hi = std::min(block.end_s, s_lo + heights.width);
-    ring.push_back({s_lo, heights.lo[b] - half});
-    ring.push_back({s_hi, heights.lo[b] - half});
-    top.push_back({s_lo, heights.hi[b] + half});
-    top.push_back({s_hi, heights.hi[b] + half});
-  }
-  ring.insert(ring.end(), top.rbegin(), top.rend());
+// The slide's upper surface as a polyline d = T(s) over its outer edges
+// [rear, front]: the vertices are the bin centres of the thickness profile of
+// Runout Morphology (runout::slide_profile, bins of outline_bin spacings,
+// troughs between particle columns closed), the ends at the outer edges at
+// the thickness of the end bins. A gap wider than the closing has T = 0.
+struct Surface {
+  std::vector<Vec2> vertices;  // (s, d), s increasing
 
-  // Neighbouring bins at one height repeat a point or put one in the middle
-  // of a straight edge: keep the corners only, which polygon triangulation
-  // needs.
-  std::vector<Vec2> corners;
-  for (const Vec2& q : ring) {
-    if (!corners.empty() && q.x == corners.back().x && q.y == corners.back().y) continue;
-    if (corners.size() >= 2) {
-      const Vec2 a = corners[corners.size() - 2], b = corners.back();
-      if ((a.x == b.x && b.x == q.x) || (a.y == b.y && b.y == q.y)) corners.pop_back();
+  double at(double s) const {
+    const auto after = std::upper_bound(vertices.begin(), vertices.end(), s,
+                                        [](double v, const Vec2& q) { return v < q.x; });
+    if (after == vertices.begin()) return vertices.front().y;
+    if (after == vertices.end()) return vertices.back().y;
+    const Vec2 a = *(after - 1), b = *after;
+    return a.y + (b.y - a.y) * (s - a.x) / (b.x - a.x);
+  }
+};
+
+Surface upper_surface(const std::vector<Vec2>& points, const runout::BaseView& base, double rear,
+                      double front, const BlockParameters& p) {
+  runout::Particles particles;
+  particles.resize(static_cast<int>(points.size()));
+  for (size_t i = 0; i < points.size(); ++i) {
+    particles.x[i] = points[i].x;
+    particles.y[i] = points[i].y;
+    particles.mass[i] = 1;
+  }
+  const runout::Profile profile =
+      runout::slide_profile(particles, base, p.outline_bin * p.spacing, p.spacing);
+  Surface surface;
+  surface.vertices.push_back({rear, profile.bins.front().thickness});
+  for (const runout::ProfileBin& bin : profile.bins)
+    if (bin.s > rear && bin.s < front) surface.vertices.push_back({bin.s, bin.thickness});
+  surface.vertices.push_back({front, profile.bins.back().thickness});
+  return surface;
+}
+
+// A boundary line in base coordinates: f(s, d) = s - s_c + (d - d_c) cot,
+// zero on the line, positive on its front (+s) side; r = s + d cot on it.
+double side_of(const BoundaryBand& line, double s, double d) {
+  return s - line.s_c + (d - line.d_c) * line.cot;
+}
+
+// Every s where the outline of a block may bend: the surface's vertices and
+// where a boundary line crosses the surface, the base (d = 0) or another
+// line. Between two of them every bound of a block's column is linear.
+std::vector<double> outline_breaks(const Surface& surface,
+                                   const std::vector<BoundaryBand>& boundaries) {
+  std::vector<double> breaks;
+  for (const Vec2& q : surface.vertices) breaks.push_back(q.x);
+  for (size_t k = 0; k < boundaries.size(); ++k) {
+    const BoundaryBand& line = boundaries[k];
+    breaks.push_back(line.s_at(0));
+    for (size_t i = 0; i + 1 < surface.vertices.size(); ++i) {
+      const Vec2 a = surface.vertices[i], b = surface.vertices[i + 1];
+      const double fa = side_of(line, a.x, a.y), fb = side_of(line, b.x, b.y);
+      if ((fa < 0) != (fb < 0)) breaks.push_back(a.x + (b.x - a.x) * fa / (fa - fb));
     }
+    for (size_t l = k + 1; l < boundaries.size(); ++l) {
+      const BoundaryBand& other = boundaries[l];
+      if (line.cot == other.cot) continue;
+      // s + d cot = s_c + d_c cot on each line
+      const double r = line.s_c + line.d_c * line.cot, r2 = other.s_c + other.d_c * other.cot;
+      const double d = (r - r2) / (line.cot - other.cot);
+      breaks.push_back(r - d * line.cot);
+    }
+  }
+  const double rear = surface.vertices.front().x, front = surface.vertices.back().x;
+  breaks.erase(std::remove_if(breaks.begin(), breaks.end(),
+                              [&](double s) { return !(s >= rear && s <= front); }),
+               breaks.end());
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  return breaks;
+}
+
+// The column of block j at s: the heights d in [0, T(s)] in front of the
+// first j boundary lines and behind the others (block_of's rule); lo > hi
+// where it is empty.
+struct Column {
+  double lo, hi;
+};
+
+Column block_column(double s, const Surface& surface, const std::vector<BoundaryBand>& boundaries,
+                    size_t j) {
+  Column c{0, surface.at(s)};
+  const double tiny = 1e-12;
+  for (size_t k = 0; k < boundaries.size(); ++k) {
+    // in front of line k (k < j): A d + B >= 0, with A = cot, B = f(s, 0);
+    // behind it the reverse
+    const double sign = k < j ? 1 : -1;
+    const double a = sign * boundaries[k].cot, b = sign * side_of(boundaries[k], s, 0);
+    if (a > tiny) {
+      c.lo = std::max(c.lo, -b / a);
+    } else if (a < -tiny) {
+      c.hi = std::min(c.hi, -b / a);
+    } else if (b < 0) {
+      c.lo = std::numeric_limits<double>::infinity();  // a vertical line, on its other side
+    }
+  }
+  return c;
+}
+
+// Drops repeated points and points in the middle of a straight edge.
+std::vector<Vec2> corners_of(const std::vector<Vec2>& ring, double scale) {
+  std::vector<Vec2> corners;
+  const double eps = 1e-9 * scale;
+  const auto straight = [eps](Vec2 a, Vec2 b, Vec2 q) {
+    const double cross = (b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x);
+    const double along = (b.x - a.x) * (q.x - b.x) + (b.y - a.y) * (q.y - b.y);
+    return std::abs(cross) <= eps * std::hypot(q.x - a.x, q.y - a.y) && along >= 0;
+  };
+  for (const Vec2& q : ring) {
+    if (!corners.empty() && std::hypot(q.x - corners.back().x, q.y - corners.back().y) <= eps)
+      continue;
+    if (corners.size() >= 2 && straight(corners[corners.size() - 2], corners.back(), q))
+      corners.pop_back();
     corners.push_back(q);
   }
+  while (corners.size() > 3 && std::hypot(corners.front().x - corners.back().x,
+                                          corners.front().y - corners.back().y) <= eps)
+    corners.pop_back();
+  return corners;
+}
+
+// Closed outline of block j: the region between the base and the slide's
+// upper surface in front of its rear boundary line and behind its front one,
+// counter-clockwise: its bottom (the base, or a line where it meets the
+// base inside the slide) from rear to front, then its top (the surface, or
+// a line) from front to rear. Where the surface dips below the region (a
+// trough at a band's top), the outline runs along the surface.
+// A block whose region has no area (its particles below the base) gets the
+// rectangle of its particles' extent and top, from the base.
+std::vector<Vec2> block_outline(const Surface& surface, const std::vector<double>& breaks,
+                                const std::vector<BoundaryBand>& boundaries, size_t j,
+                                const SlideBlock& fallback, const runout::BaseView& base,
+                                const BlockParameters& p) {
+  const double eps = 1e-9 * p.spacing;
+  std::vector<Vec2> bottom, top;  // (s, d)
+  std::vector<Vec2> pending_bottom, pending_top;  // empty columns after the last full one
+  for (const double s : breaks) {
+    const Column c = block_column(s, surface, boundaries, j);
+    const double lo = std::min(c.lo, c.hi);
+    if (c.lo <= c.hi + eps) {
+      bottom.insert(bottom.end(), pending_bottom.begin(), pending_bottom.end());
+      top.insert(top.end(), pending_top.begin(), pending_top.end());
+      pending_bottom.clear();
+      pending_top.clear();
+      bottom.push_back({s, lo});
+      top.push_back({s, c.hi});
+    } else if (!bottom.empty()) {
+      pending_bottom.push_back({s, lo});
+      pending_top.push_back({s, lo});
+    }
+  }
+  std::vector<Vec2> ring = bottom;
+  ring.insert(ring.end(), top.rbegin(), top.rend());
+  std::vector<Vec2> corners = corners_of(ring, p.spacing);
+  if (corners.size() < 3) corners = {{fallback.start_s, 0}, {fallback.end_s, 0},
+                                     {fallback.end_s, fallback.top}, {fallback.start_s, fallback.top}};
   for (Vec2& q : corners) {
     const runout::BaseFrame f = runout::base_frame_at(base, q.x);
     q = {f.x + q.y * f.nx, f.y + q.y * f.ny};
@@ -138,8 +264,7 @@ std::vector<Vec2> block_outline(const std::vector<int>& members,
 }
 
 SlideBlock measure_block(const std::vector<int>& members, const std::vector<runout::BasePoint>& at,
-                         const std::vector<double>& displacement, const runout::BaseView& base,
-                         const BlockParameters& p) {
+                         const std::vector<double>& displacement, const BlockParameters& p) {
   const double half = 0.5 * p.spacing;
   SlideBlock block;
   block.particles = static_cast<int>(members.size());
@@ -153,7 +278,6 @@ SlideBlock measure_block(const std::vector<int>& members, const std::vector<runo
   }
   block.displacement /= block.particles;
   block.width = block.end_s - block.start_s;
-  block.outline = block_outline(members, at, block, base, p);
   return block;
 }
 
@@ -183,11 +307,14 @@ std::vector<SlideBlock> find_blocks(const std::vector<Vec2>& points,
     s_min = std::min(s_min, at[i].s);
     s_max = std::max(s_max, at[i].s);
   }
-  BinnedHeights surface(s_min, parameters.outline_bin * parameters.spacing, s_max);
-  for (const runout::BasePoint& c : at) surface.add(c.s, c.d);
+  BinnedHeights heights(s_min, parameters.outline_bin * parameters.spacing, s_max);
+  for (const runout::BasePoint& c : at) heights.add(c.s, c.d);
 
-  const std::vector<BoundaryBand> boundaries = boundary_bands(bands, at, surface, base, parameters);
+  const std::vector<BoundaryBand> boundaries = boundary_bands(bands, at, heights, base, parameters);
   if (boundaries.empty()) return {};
+  const double half = 0.5 * parameters.spacing;
+  const Surface surface = upper_surface(points, base, s_min - half, s_max + half, parameters);
+  const std::vector<double> breaks = outline_breaks(surface, boundaries);
   std::vector<std::vector<int>> members(boundaries.size() + 1);
   for (size_t i = 0; i < points.size(); ++i) {
     const int j = block_of(at[i], boundaries);
@@ -198,7 +325,8 @@ std::vector<SlideBlock> find_blocks(const std::vector<Vec2>& points,
   std::vector<SlideBlock> blocks;
   for (size_t j = 0; j < members.size(); ++j) {
     if (members[j].empty()) continue;  // two boundary lines that cross above the slide
-    SlideBlock block = measure_block(members[j], at, displacement, base, parameters);
+    SlideBlock block = measure_block(members[j], at, displacement, parameters);
+    block.outline = block_outline(surface, breaks, boundaries, j, block, base, parameters);
     const BoundaryBand* left = j > 0 ? &boundaries[j - 1] : nullptr;
     const BoundaryBand* right = j < boundaries.size() ? &boundaries[j] : nullptr;
     block.type = classify(left, right, parameters.dip_tolerance);

@@ -20,7 +20,8 @@ struct BlockParameters {
   double dip_tolerance = 10; // degrees: a band dips when |dip| is in [tol, 90 - tol]
   double surface_gap = 3;    // in h: the most a band's top may lie below the upper surface
                              // and still bound blocks
-  double outline_bin = 2;    // along-base bin width of the outlines and the surface, in h
+  double outline_bin = 2;    // along-base bin width of the upper surface, in h: the surface
+                             // bands must reach, and the profile the outlines follow
 };
 
 struct SlideBlock {
@@ -33,7 +34,10 @@ struct SlideBlock {
   double left_dip = 0, right_dip = 0;   // dips of the bounding bands; NaN where none
   double displacement = 0;              // mean |displacement| of its particles
   int particles = 0;
-  std::vector<Vec2> outline;            // closed polygon, counter-clockwise, run frame
+  // Closed polygon, counter-clockwise, run frame: the slide between its
+  // bands, above the base and under the slide's upper surface (Runout
+  // Morphology's profile, gaps between particle columns closed).
+  std::vector<Vec2> outline;
 };
 
 // The blocks of the frame between consecutive boundary bands, rear to
