@@ -265,4 +265,6 @@ class CudaBackend {
   std::vector<double> host_in_, host_out_;  // nonlocal_average's
 };
 
+static_assert(Backend<CudaBackend> && CellGroupPasses<CudaBackend>);
+
 }  // namespace runout

@@ -6,7 +6,9 @@
 // same node, and a strip of the second colour starts only once the two
 // beside it are done, so the scatter is race-free without atomics and adds
 // at every node in the same order whatever the number of threads: results
-// are bit for bit the same on 1 or 16 threads.
+// are bit for bit the same on 1 or 16 threads. Its helpers: the counting
+// sort by block (block_sort.hpp), the cell groups (cell_group.hpp), work
+// handed out owner first (owned_queue.hpp), the node loops (active_nodes.hpp).
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -15,62 +17,45 @@
 #include <utility>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "runout/active_nodes.hpp"
+#include "runout/backend_concept.hpp"
 #include "runout/backend_host.hpp"
+#include "runout/block_sort.hpp"
+#include "runout/cell_group.hpp"
+#include "runout/openmp_threads.hpp"
+#include "runout/owned_queue.hpp"
 
 namespace runout {
 
-// The hot loops are [[gnu::flatten]]: inside these templates GCC 12 left
-// make_stencil and stress_update out of line, and the one-driver step ran
-// about 9 % slower on one thread than the hand-written loops before it
-// (case 2, 0.25 m cells, 1 s: median user time of five alternated pairs);
-// flattened, the gap is within the machine's noise (3 %). Each loop takes
-// its own copy of its stage functor and views (firstprivate): shared, they
-// are read through a pointer, and GCC reloaded their array pointers after
-// every store to a nodal or particle array, which might alias them; private,
-// they stay in registers (6 % fewer instructions a step, callgrind, 1e5
-// particles).
+// The hot loops are [[gnu::flatten]], or GCC 12 leaves make_stencil and
+// stress_update out of line in them; each loop takes its own copy of its
+// stage functor (firstprivate), whose array pointers then stay in
+// registers instead of being reloaded after every store that might alias
+// them (docs/performance.md, "Choices in the CPU step").
 class OpenMpBackend : public HostBackend {
  public:
   // Blocks are the unit of the memory order (a block's particles are
   // stored together) and of the cell means (a cell lies in one block).
   static constexpr int kBlock = 4;
-  // A particle in cell c touches nodes c-1..c+2, so a strip writes nodes
-  // within one cell of itself plus two, and two strips of one colour, a
-  // strip (kStrip kBlock cells) apart, never share a node. Slides are long
-  // and thin: strips across x give two threads many, evenly filled pieces
-  // of work in each of two colours, where rows of blocks in four colours
-  // gave them few, uneven ones and four waits a scatter.
-  // Sixteen blocks (64 cells) wide: the step ran 1.02 to 1.09 times as
-  // fast as with eight on two threads (bench_step, 1e5 and 1e6 particles;
-  // longer runs along a node row), and 64 gave too few strips for two
-  // threads at 1e5. The price is fewer strips for many threads: a grid
-  // 1800 cells long has 28, 14 a colour. The width fixes the block order,
-  // so it depends on nothing but the grid: results stay the same whatever
-  // the number of threads.
+  // A particle in cell c touches nodes c-1..c+2, so two strips of one
+  // colour, a strip (kStrip kBlock cells) apart, never share a node. Strips
+  // across x suit long, thin slides; 16 blocks was the fastest width
+  // (docs/performance.md). The width fixes the block order, so it depends
+  // on nothing but the grid: results stay the same on any number of threads.
   static constexpr int kStrip = 16;
   // Loops shorter than this run on one thread: a parallel region costs a
   // few microseconds, more than small scenes (and the tests) spend in the
   // loop.
   static constexpr int kParallelMin = 4096;
-  // Particle loops hand out chunks as threads come free: the particles are
-  // stored by block, bottom rows first, and those by the base (sheared,
-  // yielding, in contact) cost more per step than the rest, so equal halves
-  // kept one of two threads waiting a third of the loop.
+  // Particle loops hand out chunks as threads come free: the particles by
+  // the base (sheared, yielding, in contact) cost more than the rest, so
+  // equal halves left one thread waiting.
   static constexpr int kChunk = 1024;
   // Particles drift out of block order slowly (a cell in many steps), so
   // sorting them in memory every few dozen steps keeps the loops sequential.
   static constexpr long kReorderInterval = 50;
-  // A cell group (CellGroup) is kGroupRows block rows of a strip. Taken
-  // by whichever thread came first, four rows ran 1.06 to 1.11 times as
-  // fast as one on two threads (bench_step, 1e5 and 1e6 particles); taken
-  // owner first (OwnedQueue), two ran 1.01 to 1.02 times as fast as four
-  // at 1e5 and 1.00 to 1.01 at 1e6, and one 1.01 times as fast as two at
-  // 1e5 but 0.96 to 0.97 at 1e6.
+  // A cell group (cell_group.hpp) is kGroupRows block rows of a strip: the
+  // fastest height, taken owner first (docs/performance.md).
   static constexpr int kGroupRows = 2;
   // A cell group's cells: kGroupCellsX along x (a strip's width) by
   // kGroupCellsY.
@@ -139,14 +124,10 @@ class OpenMpBackend : public HostBackend {
 
   // The first colour's strips are handed out before the second's, and a
   // strip of the second colour waits only for its two neighbours
-  // (wait_for_strip), not for the whole first colour: with each colour's
-  // strips a loop of its own, the second loop waited at the first's end
-  // for its slowest strip, and with two threads and five strips of the
-  // first colour, one thread ran three of them while the other waited (the
-  // step ran 1.02 to 1.05 times as fast without that wait on two threads
-  // at 1e5 particles, bench_step). Within a colour each thread takes its
+  // (wait_for_strip), not for the whole first colour, whose slowest strip
+  // a loop of its own would wait for. Within a colour each thread takes its
   // own strips first (owner). The order of the additions at every node is
-  // the same as with the two loops, whichever thread adds.
+  // the same whichever thread adds.
   template <class Stage>
   [[gnu::flatten]] void scatter(const GridView& g, const StepConfig& c, Stage stage) {
     const PlainAdd add;
@@ -157,13 +138,13 @@ class OpenMpBackend : public HostBackend {
       strip_done_ = std::vector<std::atomic<int>>(strips);
     for (int k = 0; k < strips; ++k) strip_done_[k].store(0, std::memory_order_relaxed);
     const bool parallel = order_.size() > kParallelMin;
-    const int threads = parallel ? max_threads() : 1;
+    const int threads = parallel ? openmp::max_threads() : 1;
     for (OwnedQueue& q : colour_queue_) q.reset(threads);
     for (int k = 0; k < strips; ++k)
       colour_queue_[k % 2].add(owner(group_start(k, 0), group_start(k, blocks_y_), threads), k);
 #pragma omp parallel firstprivate(stage) if (parallel)
     for (OwnedQueue& queue : colour_queue_)
-      queue.run(this_thread(), [&](int strip) {
+      queue.run(openmp::this_thread(), [&](int strip) {
         // The first colour's strips have all been handed out by now, so
         // these waits end.
         if (strip % 2 == 1) {
@@ -208,30 +189,8 @@ class OpenMpBackend : public HostBackend {
   void for_each_particle(Stage stage) {
     for_each(particles_.size(), stage);
   }
-  // A cell group's L and displacements (stages 6 and 7), in buffers of
-  // its thread's, indexed from the group's smallest particle index: they
-  // stay in the core's cache from the gradient to the stress update, and
-  // are not written back to memory after it as whole-particle arrays were
-  // (with the counting sort's runs, the two-thread step ran 1.07 to 1.09
-  // times as fast at 1e6 particles, 1.02 at 1e5, bench_step).
-  struct GroupScratch {
-    StaggeredArray xx, xy, yx, yy, dx, dy;
-    // The group's cell means, by the cell's place in the group
-    // (particle_cell_): a cell's sums stay with the thread that takes
-    // them, where in arrays over the whole grid box a group's cells were
-    // in the cache of whichever thread had the group the step before. Two
-    // sets: the stress update reads the volumetric rate's means while it
-    // adds up the mean stress's.
-    StaggeredArray volume[2] = {StaggeredArray(kGroupCellsX * kGroupCellsY),
-                                StaggeredArray(kGroupCellsX * kGroupCellsY)};
-    StaggeredArray mean[2] = {StaggeredArray(kGroupCellsX * kGroupCellsY),
-                              StaggeredArray(kGroupCellsX * kGroupCellsY)};
-    void fit(int count) {
-      if (static_cast<int>(dx.size()) >= count) return;
-      for (StaggeredArray* a : {&xx, &xy, &yx, &yy, &dx, &dy}) a->resize(count);
-    }
-  };
-  class CellGroup;
+  // A thread's buffers for its cell groups.
+  using Scratch = GroupScratch<kGroupCellsX * kGroupCellsY>;
   // f(cells) for each CellGroup, in parallel, each thread its own groups
   // first (owner): groups share no particle and no cell. The sum of what
   // they return.
@@ -244,9 +203,9 @@ class OpenMpBackend : public HostBackend {
     const int bands = (blocks_y_ + kGroupRows - 1) / kGroupRows, groups = strips_ * bands;
     // Group k: strip k / bands, block rows [by0(k), by1(k)).
     const auto by0 = [=](int k) { return (k % bands) * kGroupRows; };
-    const auto by1 = [=](int k) { return std::min(by0(k) + kGroupRows, blocks_y_); };
+    const auto by1 = [=, this](int k) { return std::min(by0(k) + kGroupRows, blocks_y_); };
     const bool parallel = particles_.size() > kParallelMin;
-    const int threads = parallel ? max_threads() : 1;
+    const int threads = parallel ? openmp::max_threads() : 1;
     if (group_scratch_.size() < static_cast<std::size_t>(threads)) group_scratch_.resize(threads);
     // Buffers of threads x span_limit particles at most, as many as the
     // whole-particle arrays: a group whose span is longer uses those.
@@ -258,9 +217,10 @@ class OpenMpBackend : public HostBackend {
 #pragma omp parallel firstprivate(f) reduction(max : smax, xmax, ymax) \
     reduction(min : xmin, ymin) reduction(+ : bad) if (parallel)
     {
-      const int thread = this_thread();
+      const int thread = openmp::this_thread();
       group_queue_.run(thread, [&](int k) {
-        CellGroup cells(*this, k / bands, by0(k), by1(k), span_limit, group_scratch_[thread]);
+        CellGroup<OpenMpBackend> cells(*this, k / bands, by0(k), by1(k), span_limit,
+                                       group_scratch_[thread]);
         if (cells.empty()) return;
         const SpeedMax speed = f(cells);
         smax = std::max(smax, speed.max);
@@ -280,7 +240,7 @@ class OpenMpBackend : public HostBackend {
   // The longest of the threads' cell-group buffers, in particles.
   int group_buffer_particles() const {
     std::size_t most = 0;
-    for (const GroupScratch& s : group_scratch_) most = std::max(most, s.dx.size());
+    for (const Scratch& s : group_scratch_) most = std::max(most, s.dx.size());
     return static_cast<int>(most);
   }
 
@@ -291,184 +251,14 @@ class OpenMpBackend : public HostBackend {
   }
   const Particles& host_particles() const { return particles_; }
 
-  // The cells of kGroupRows block rows of one strip (each kStrip blocks
-  // of kBlock x kBlock cells) and their particles, which lie together in
-  // the block order: a few thousand, so what the driver's stages pass from
-  // one of these loops to the next (gradients, displacements, cell means)
-  // is still in the cache when the next reads it, where loops over all
-  // particles had written it out to memory and read it back.
-  class CellGroup {
-   public:
-    CellGroup(OpenMpBackend& b, int strip, int by0, int by1, int span_limit, GroupScratch& scratch)
-        : b_(b), scratch_(scratch) {
-      first_ = b.group_start(strip, by0);
-      last_ = b.group_start(strip, by1);
-      rows_ = std::min(by1 * kBlock, b.cells_y_) - by0 * kBlock;
-      // The group's particle indices: since the last reorder, the run
-      // first_ .. last_ - 1 and the few that have moved in from the groups
-      // around it (whose indices lie near).
-      int lo = std::numeric_limits<int>::max(), hi = -1;
-      for (int q = first_; q < last_; ++q) {
-        lo = std::min(lo, b.order_[q]);
-        hi = std::max(hi, b.order_[q]);
-      }
-      if (hi < lo) return;
-      // A particle that has crossed a periodic seam since the last reorder
-      // keeps its index but joins a group at the other end of the box, so
-      // the span lo .. hi can reach across all the particles: sized to it,
-      // every thread's buffers would grow to the particle count.
-      if (hi - lo < span_limit) {
-        lowest_ = lo;
-        scratch_.fit(hi - lo + 1);
-      } else {
-        arrays_ = &b.whole_particle_scratch();
-      }
-    }
-    bool empty() const { return first_ == last_; }
-
-    GradientView gradients() const {
-      return {arrays_->xx.data(), arrays_->xy.data(), arrays_->yx.data(), arrays_->yy.data(),
-              lowest_};
-    }
-    StepScratch scratch() const { return {arrays_->dx.data(), arrays_->dy.data(), lowest_}; }
-
-    template <class Stage>
-    void for_each_particle(Stage stage) const {
-      for (int q = first_; q < last_; ++q) stage(b_.order_[q]);
-    }
-    template <class Stage>
-    void for_each_particle_stencil(const GridView& g, const StepConfig& c, Stage stage) const {
-      b_.for_each_four(g, c, first_, last_, [&](const int* p, const Stencil2D* st, int count) {
-        for (int k = 0; k < count; ++k) stage(p[k], st[k]);
-      });
-    }
-
-    // Four particles at a time where four in a row are also consecutive in
-    // memory and share a material (stage.four): which ones depends on the
-    // block order alone, so not on the number of threads. Also the box of
-    // the particles where the stage moved them (box()), the next step's,
-    // from the positions it has just stored (a pass of its own over the
-    // group's particles cost 1.5 % of a step at 1e5 particles); the guards
-    // have found them finite where no particle failed.
-    template <class Stage>
-    SpeedMax max_speed(Stage stage) {
-      return max_speed_then(stage, [](int) {});
-    }
-    const ParticleBox& box() const { return box_; }
-
-    // The same passes, with the group's cells' volume-weighted means of
-    // mean_of(p), each particle's share added right after the stage has run
-    // on it, in the group's order (the driver's kMeansInPasses), so the same
-    // sums: in loops of their own the means read each particle's volume,
-    // cell and value again (two threads ran 1.00 to 1.01 times as fast at
-    // 1e5 particles and 1.00 to 1.02 at 1e6, bench_step; all of it from
-    // the volumetric rate's means, the mean stress's alone changed nothing).
-    static constexpr bool kMeansInPasses = true;
-    template <class Stage, class Value>
-    CellMeanView for_each_particle_stencil(const GridView& g, const StepConfig& c, Stage stage,
-                                           Value mean_of) const {
-      const CellSums sums = start_means(0);
-      b_.for_each_four(g, c, first_, last_, [&](const int* p, const Stencil2D* st, int count) {
-        for (int k = 0; k < count; ++k) {
-          stage(p[k], st[k]);
-          sums.add(p[k], mean_of(p[k]));
-        }
-      });
-      return finish_means(0);
-    }
-    template <class Stage, class Value>
-    SpeedMax max_speed(Stage stage, Value mean_of, CellMeanView& means) {
-      const CellSums sums = start_means(1);
-      const SpeedMax out = max_speed_then(stage, [&](int p) { sums.add(p, mean_of(p)); });
-      means = finish_means(1);
-      return out;
-    }
-
-   private:
-    // The group's cell sums: volume and volume times the value, by the
-    // cell's place in the group (particle_cell_).
-    struct CellSums {
-      double *volume, *mean;
-      const double* vol;
-      const int* cell;
-      void add(int p, double value) const {
-        volume[cell[p]] += vol[p];
-        mean[cell[p]] += vol[p] * value;
-      }
-    };
-    CellSums start_means(int set) const {
-      double *const volume = scratch_.volume[set].data(), *const mean = scratch_.mean[set].data();
-      const int cells = rows_ * kGroupCellsX;
-      std::fill_n(volume, cells, 0.0);
-      std::fill_n(mean, cells, 0.0);
-      return {volume, mean, b_.particles_.vol.data(), b_.particle_cell_.data()};
-    }
-    CellMeanView finish_means(int set) const {
-      double *const volume = scratch_.volume[set].data(), *const mean = scratch_.mean[set].data();
-      const int cells = rows_ * kGroupCellsX;
-      for (int c = 0; c < cells; ++c)
-        if (volume[c] > 0.0) mean[c] /= volume[c];
-      return {mean, b_.particle_cell_.data()};
-    }
-
-    // max_speed, with then(p) after the stage has run on p.
-    template <class Stage, class Then>
-    SpeedMax max_speed_then(Stage stage, Then then) {
-      const int* const order = b_.order_.data();
-      const double *const x = b_.particles_.x.data(), *const y = b_.particles_.y.data();
-      const double inf = std::numeric_limits<double>::infinity();
-      Lanes x0 = splat(inf), x1 = splat(-inf), y0 = x0, y1 = x1;
-      const auto take = [&](const Lanes& px, const Lanes& py) {
-        x0 = select_less(px, x0, px, x0);
-        x1 = select_less(x1, px, px, x1);
-        y0 = select_less(py, y0, py, y0);
-        y1 = select_less(y1, py, py, y1);
-      };
-      SpeedMax out;
-      for (int q = first_; q < last_;) {
-        const int p = order[q];
-        double s[4];
-        if (q + 4 <= last_ && order[q + 1] == p + 1 && order[q + 2] == p + 2 &&
-            order[q + 3] == p + 3 && stage.four(p, s)) {
-          for (int k = 0; k < 4; ++k) {
-            out.take(s[k]);
-            then(p + k);
-          }
-          take(load_lanes(x + p), load_lanes(y + p));
-          q += 4;
-        } else {
-          out.take(stage(p));
-          then(p);
-          take(splat(x[p]), splat(y[p]));
-          ++q;
-        }
-      }
-      box_ = {inf, -inf, inf, -inf, 0};
-      for (int k = 0; k < 4; ++k) {
-        box_.xmin = std::min(box_.xmin, lane(x0, k));
-        box_.xmax = std::max(box_.xmax, lane(x1, k));
-        box_.ymin = std::min(box_.ymin, lane(y0, k));
-        box_.ymax = std::max(box_.ymax, lane(y1, k));
-      }
-      return out;
-    }
-    OpenMpBackend& b_;
-    GroupScratch& scratch_;  // its thread's
-    int first_, last_;      // the particles order_[first_ .. last_)
-    int rows_;               // its rows of cells (kGroupCellsY, or fewer at the box's top)
-    GroupScratch* arrays_ = &scratch_;  // L and the displacements: its thread's, or whole-particle
-    int lowest_ = 0;         // the particle index at arrays_' start
-    ParticleBox box_{};      // max_speed's
-  };
-
  private:
+  friend class CellGroup<OpenMpBackend>;
+
   // The stencils of particles p[0 .. 3], four at a time (GIMP), from their
   // positions and the half-widths the binning stored: made again in each
-  // pass that needs them, where storing the 160 bytes of each and reading
-  // them back in three passes made the step wait on memory (docs/engine.md,
-  // "Shape functions"). Out of line, so that its arithmetic is compiled
-  // once: a particle has the same stencil in every pass, whichever three it
-  // is made with.
+  // pass that needs them rather than stored (docs/engine.md, "Shape
+  // functions"). Out of line, so that its arithmetic is compiled once: a
+  // particle has the same stencil in every pass, whichever three it is made with.
   // kDerivatives false: GIMP stencils without their derivatives, for the
   // passes that do not read them (the stage's derivatives()); the weights
   // are the same operations, so the same bits (tested).
@@ -548,160 +338,25 @@ class OpenMpBackend : public HostBackend {
         place(p, cell_of(P.x[p], g.ox, g.h), cell_of(P.y[p], g.oy, g.h));
       }
     };
-    sort_by_block(blocks, bin_range);
+    sort_by_block(particles_.size(), blocks, particle_block_.data(), bin_range,
+                  particles_.size() > kParallelMin, order_.data(), block_start_, next_);
   }
-
-  // Stable counting sort: within a block particles keep their index order,
-  // which fixes the order of the sums at every node. Each thread bins
-  // (bin(p0, p1): each particle's block), counts and places one contiguous
-  // range of the particles, the ranges in index order, so the order is the
-  // serial sort's whatever the number of threads; done on one, it kept the
-  // other waiting 6 % of a two-thread step (1e5 particles). Binning and
-  // sorting in one parallel region, rather than one each, saves waking the
-  // other threads once (the CLI's wait, openmp_wait.hpp).
-  template <class Bin>
-  void sort_by_block(int blocks, Bin bin) {
-    const int n = particles_.size();
-    const int* const block = particle_block_.data();
-    int* const order = order_.data();
-    block_start_.assign(blocks + 1, 0);
-    next_.resize(static_cast<std::size_t>(max_threads()) * blocks);
-#pragma omp parallel firstprivate(bin) if (n > kParallelMin)
-    {
-      const int t = this_thread(), threads = team_threads();
-      // next_: thread t's count in each block, then its next place there.
-      int* const next = next_.data() + static_cast<std::size_t>(t) * blocks;
-      std::fill_n(next, blocks, 0);
-      const auto start_of = [&](int u) {  // a multiple of four, for bin
-        return u == threads ? n : 4 * static_cast<int>(static_cast<long>(n / 4) * u / threads);
-      };
-      const int p0 = start_of(t), p1 = start_of(t + 1);
-      bin(p0, p1);
-      count_runs(block, p0, p1, next);
-#pragma omp barrier
-#pragma omp single
-      {
-        int start = 0;
-        for (int b = 0; b < blocks; ++b) {
-          block_start_[b] = start;
-          for (int u = 0; u < threads; ++u) {
-            int& slot = next_[static_cast<std::size_t>(u) * blocks + b];
-            const int count = slot;
-            slot = start;
-            start += count;
-          }
-        }
-        block_start_[blocks] = start;
-      }
-      place_runs(block, p0, p1, next, order);
-    }
-  }
-
-  // The counting sort's two passes over a thread's range, run by run of
-  // particles of one block: the particles lie in block order since the
-  // last reorder, bar the few that have moved since, so runs are long, and
-  // a count kept in a register does not wait, particle after particle, on
-  // the store of the one before it (++next[block[p]] did).
-  static void count_runs(const int* block, int p0, int p1, int* count) {
-    if (p0 == p1) return;
-    int run_block = block[p0], run = 0;
-    for (int p = p0; p < p1; ++p) {
-      if (block[p] != run_block) {
-        count[run_block] += run;
-        run_block = block[p];
-        run = 0;
-      }
-      ++run;
-    }
-    count[run_block] += run;
-  }
-  static void place_runs(const int* block, int p0, int p1, int* next, int* order) {
-    if (p0 == p1) return;
-    int run_block = block[p0], at = next[run_block];
-    for (int p = p0; p < p1; ++p) {
-      if (block[p] != run_block) {
-        next[run_block] = at;
-        run_block = block[p];
-        at = next[run_block];
-      }
-      order[at++] = p;
-    }
-    next[run_block] = at;
-  }
-
-  // Work handed out owner first: each thread takes the items of its own
-  // list, then those left in the others' lists, so that the load stays
-  // balanced.
-  class OwnedQueue {
-   public:
-    void reset(int lists) {
-      if (static_cast<int>(lists_.size()) != lists) {
-        lists_.resize(lists);
-        taken_ = std::vector<std::atomic<int>>(lists);
-      }
-      for (int l = 0; l < lists; ++l) {
-        lists_[l].clear();
-        taken_[l].store(0, std::memory_order_relaxed);
-      }
-    }
-    void add(int list, int item) { lists_[list].push_back(item); }
-    // f(item) for each item this thread takes; on every thread, each item once.
-    template <class F>
-    void run(int thread, F&& f) {
-      const int lists = static_cast<int>(lists_.size());
-      for (int u = 0; u < lists; ++u) {
-        const int l = (thread + u) % lists;
-        const int size = static_cast<int>(lists_[l].size());
-        for (int at; (at = taken_[l].fetch_add(1, std::memory_order_relaxed)) < size;)
-          f(lists_[l][at]);
-      }
-    }
-
-   private:
-    std::vector<std::vector<int>> lists_;
-    std::vector<std::atomic<int>> taken_;  // how far each list has been handed out
-  };
 
   // The thread (of threads) that bins the middle particle of
   // order_[first, last), the particles of a strip or a cell group: each
   // thread bins one range of the particles' indices (sort_by_block), which
   // since the last reorder are those of a run of whole strips, and takes
   // the same particles first in the scatters and the cell groups, so that
-  // they are mostly in its own core's cache from one pass to the next: the
-  // two-thread step ran 1.03 to 1.05 times as fast at 1e5 particles and
-  // 1.01 to 1.02 at 1e6 as with one queue for all threads (bench_step).
-  // Taken by whichever thread comes first, a strip's particles were read
-  // from the other core's cache as often as not.
+  // they are mostly in its own core's cache from one pass to the next.
   int owner(int first, int last, int threads) const {
     const long n = std::max<long>(1, static_cast<long>(order_.size()));
     const long middle = (first + static_cast<long>(last)) / 2;
     return static_cast<int>(std::min<long>(threads - 1, middle * threads / n));
   }
-  static int max_threads() {
-#ifdef _OPENMP
-    return omp_get_max_threads();
-#else
-    return 1;
-#endif
-  }
-  static int this_thread() {
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-  }
-  static int team_threads() {  // in the parallel region that calls it
-#ifdef _OPENMP
-    return omp_get_num_threads();
-#else
-    return 1;
-#endif
-  }
 
   // Sized once, on whichever thread first needs it; the groups that use it
   // write only their own particles' places.
-  GroupScratch& whole_particle_scratch() {
+  Scratch& whole_particle_scratch() {
 #pragma omp critical(runout_whole_particle_scratch)
     whole_particle_scratch_.fit(particles_.size());
     return whole_particle_scratch_;
@@ -720,12 +375,15 @@ class OpenMpBackend : public HostBackend {
   std::vector<int> block_start_, order_, particle_block_, particle_cell_, next_;
   ActiveNodes active_;                         // the nodes this step's particles reach
   std::vector<std::atomic<int>> strip_done_;  // a scatter's strips, 1 once added
-  std::vector<GroupScratch> group_scratch_;     // a thread's, for its cell groups
-  GroupScratch whole_particle_scratch_;          // for groups whose span passes the limit
+  std::vector<Scratch> group_scratch_;     // a thread's, for its cell groups
+  Scratch whole_particle_scratch_;          // for groups whose span passes the limit
   OwnedQueue colour_queue_[2], group_queue_;  // the scatters', the cell groups' work
   int blocks_y_ = 0, strips_ = 0, cells_y_ = 0;
   ParticleBox box_{};  // bounding_box's, when box_known_
   bool box_known_ = false;
 };
+
+static_assert(Backend<OpenMpBackend>);
+static_assert(CellGroupPasses<CellGroup<OpenMpBackend>> && MeansInPasses<CellGroup<OpenMpBackend>>);
 
 }  // namespace runout

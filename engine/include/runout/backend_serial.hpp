@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "runout/backend_concept.hpp"
 #include "runout/backend_host.hpp"
 
 namespace runout {
@@ -137,5 +138,7 @@ class SerialDeviceBackend : public HostBackend {
   StaggeredArray dx_, dy_, lxx_, lxy_, lyx_, lyy_;
   StaggeredArray cell_volume_, cell_mean_;  // per cell of the grid box
 };
+
+static_assert(Backend<SerialDeviceBackend> && CellGroupPasses<SerialDeviceBackend>);
 
 }  // namespace runout

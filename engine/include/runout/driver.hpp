@@ -2,35 +2,8 @@
 // The explicit MPM step, written once (docs/engine.md, "One driver"): the
 // order of the stages of stages.hpp, the volumetric smoothing, the nonlocal
 // averaging, the guards, the counters and advance_to, over a backend that
-// says only how to run a loop:
-//
-//   particles()                        the particles' view (its memory)
-//   bounding_box()                     min/max of the positions, non-finite count
-//   fit_grid(placed)                   the grid box's arrays, cleared
-//   bin(g, c, step)                    whatever scatter() needs (blocks, a sort)
-//   scatter(g, c, stage)               stage(p, stencil, add, lower) per particle
-//   for_each(count, stage)             stage(i) per node row
-//   for_each_node(g, stage)            stage(n) per node the particles reach (or
-//                                      every node of the box)
-//   for_each_particle(stage)           stage(p)
-//   for_each_particle_stencil(g, c, stage)  stage(p, stencil)      (*)
-//   max_speed(stage)                   max of stage(p), and how many were < 0
-//                                      (the CPU's four at a time, stage.four) (*)
-//   sum_nodes(g, a)                    a sum over the box's nodes
-//   fill_nodes(g, a, v)                a = v where for_each_node goes
-//   cell_means(g, value)               per-cell volume-weighted means of value(p) (*),
-//                                      or, where a group has kMeansInPasses, taken
-//                                      in the pass before: the overloads
-//                                      for_each_particle_stencil(g, c, stage, value)
-//                                      and max_speed(stage, value, means)
-//   for_cell_groups(g, c, f)           f(cells) for groups of whole cells, each
-//                                      with the loops marked (*) and
-//                                      for_each_particle over its particles,
-//                                      and gradients() and scratch(), its
-//                                      particles' L and displacements;
-//                                      the sum of the SpeedMax they return
-//   xi_start(), nonlocal_average(...)
-//   materials(), kernel_config(c), host_particles()
+// says only how to run a loop: the concept Backend of backend_concept.hpp,
+// each primitive there with a line on what it does.
 //
 // The CPU backend (backend_openmp.hpp) runs the loops with OpenMP and
 // scatters by block colouring, race-free and in a fixed order; the CUDA
@@ -44,10 +17,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "runout/backend_concept.hpp"
 #include "runout/base.hpp"
 #include "runout/grid.hpp"
 #include "runout/guards.hpp"
@@ -250,7 +223,7 @@ struct SetNonlocalXi {
 
 }  // namespace stage
 
-template <class Backend>
+template <Backend B>
 class Driver {
  public:
   Driver(const Scene& scene, Particles particles);
@@ -284,8 +257,8 @@ class Driver {
   const std::vector<MaterialParams>& materials() const { return materials_; }
   const StepConfig& config() const { return config_; }  // its base view on the host
   const GuardLimits& limits() const { return limits_; }
-  Backend& backend() { return backend_; }
-  const Backend& backend() const { return backend_; }
+  B& backend() { return backend_; }
+  const B& backend() const { return backend_; }
 
  private:
   void fit_grid(double dt);
@@ -301,7 +274,7 @@ class Driver {
   std::vector<double> nonlocal_lengths_;
   GuardLimits limits_;
   double max_signal_speed_ = 0;
-  Backend backend_;
+  B backend_;
   GridView grid_{};
   double domain_x_, domain_y_, h_, courant_, spacing_;
   bool smooth_volumetric_;
@@ -349,18 +322,12 @@ inline double first_signal_speed(Particles& particles,
 }
 
 // A cell group's pass, and its cells' volume-weighted means of mean_of:
-// taken in the same pass where the group offers it (kMeansInPasses, the
+// taken in the same pass where the group offers it (MeansInPasses, the
 // CPU's), else in a loop of their own after it (cell_means).
-template <class Cells, class = void>
-constexpr bool means_in_passes = false;
-template <class Cells>
-constexpr bool means_in_passes<Cells, std::void_t<decltype(Cells::kMeansInPasses)>> =
-    Cells::kMeansInPasses;
-
 template <class Cells, class Stage, class Value>
 CellMeanView stencil_pass_and_means(Cells& cells, const GridView& g, const StepConfig& c,
                                     const Stage& stage, const Value& mean_of) {
-  if constexpr (means_in_passes<Cells>) {
+  if constexpr (MeansInPasses<Cells>) {
     return cells.for_each_particle_stencil(g, c, stage, mean_of);
   } else {
     cells.for_each_particle_stencil(g, c, stage);
@@ -370,7 +337,7 @@ CellMeanView stencil_pass_and_means(Cells& cells, const GridView& g, const StepC
 template <class Cells, class Stage, class Value>
 SpeedMax max_speed_and_means(Cells& cells, const GridView& g, const Stage& stage,
                              const Value& mean_of, CellMeanView& means) {
-  if constexpr (means_in_passes<Cells>) {
+  if constexpr (MeansInPasses<Cells>) {
     return cells.max_speed(stage, mean_of, means);
   } else {
     const SpeedMax speed = cells.max_speed(stage);
@@ -381,8 +348,8 @@ SpeedMax max_speed_and_means(Cells& cells, const GridView& g, const Stage& stage
 
 }  // namespace driver_detail
 
-template <class Backend>
-Driver<Backend>::Driver(const Scene& scene, Particles particles)
+template <Backend B>
+Driver<B>::Driver(const Scene& scene, Particles particles)
     : base_(scene.base, scene.grid.min.y()),
       materials_(make_materials(scene)),
       config_(make_step_config(scene, materials_)),
@@ -400,8 +367,8 @@ Driver<Backend>::Driver(const Scene& scene, Particles particles)
   config_.base = base_.view();
 }
 
-template <class Backend>
-void Driver<Backend>::restore(const StepCounters& c) {
+template <Backend B>
+void Driver<B>::restore(const StepCounters& c) {
   time_ = c.time;
   steps_ = c.steps;
   last_dt_ = c.last_dt;
@@ -410,13 +377,13 @@ void Driver<Backend>::restore(const StepCounters& c) {
   limits_.max_speed = c.speed_limit;
 }
 
-template <class Backend>
-void Driver<Backend>::fail(double dt) {
+template <Backend B>
+void Driver<B>::fail(double dt) {
   throw NumericalFailure(describe_faults(backend_.host_particles(), limits_, steps_, time_, dt));
 }
 
-template <class Backend>
-void Driver<Backend>::fit_grid(double dt) {
+template <Backend B>
+void Driver<B>::fit_grid(double dt) {
   ParticleBox b = backend_.bounding_box();
   // The end of every step checks the particles; this catches particles
   // given (or changed between steps) outside the domain before they index
@@ -431,14 +398,14 @@ void Driver<Backend>::fit_grid(double dt) {
   grid_ = backend_.fit_grid(placed);
 }
 
-template <class Backend>
-void Driver<Backend>::exchange(Exchange after) {
+template <Backend B>
+void Driver<B>::exchange(Exchange after) {
   if (config_.period > 0.0) backend_.for_each(grid_.ny, stage::ExchangeRow{grid_, after});
 }
 
 // V* of XPIC(m) (musl_stages.hpp): m - 1 round trips of the start velocity.
-template <class Backend>
-void Driver<Backend>::xpic_start_velocity(const StepConfig& c) {
+template <Backend B>
+void Driver<B>::xpic_start_velocity(const StepConfig& c) {
   const GridView g = grid_;
   const ParticleView P = backend_.particles();
   backend_.for_each_node(g, stage::XpicStart{g, c});
@@ -457,8 +424,8 @@ void Driver<Backend>::xpic_start_velocity(const StepConfig& c) {
 // strength is evaluated at the regularised xi (the explicit scheme of
 // Galavi & Schweiger 2010: local return, nonlocal internal variable). The
 // increments are measured at the particles' end-of-step positions.
-template <class Backend>
-void Driver<Backend>::regularise_softening(double dt) {
+template <Backend B>
+void Driver<B>::regularise_softening(double dt) {
   const ParticleView P = backend_.particles();
   double* start = backend_.xi_start();
   double* local = backend_.xi_local();
@@ -469,8 +436,8 @@ void Driver<Backend>::regularise_softening(double dt) {
                                                   backend_.materials(), dt});
 }
 
-template <class Backend>
-void Driver<Backend>::step(double dt) {
+template <Backend B>
+void Driver<B>::step(double dt) {
   fit_grid(dt);
   backend_.bin(grid_, config_, steps_);
   configure_step(config_, time_, dt);
@@ -499,7 +466,7 @@ void Driver<Backend>::step(double dt) {
   // cell (the volumetric smoothing's means), so they run group by group of
   // whole cells, and what they pass between them (L, the displacements)
   // is the group's own.
-  const SpeedMax speed = backend_.for_cell_groups(g, c, [&](auto& cells) {
+  const SpeedMax speed = backend_.for_cell_groups(g, c, [&](CellGroupPasses auto& cells) {
     const GradientView L = cells.gradients();
     const StepScratch s = cells.scratch();
     const stage::Gradient gradient{g, dt, s, L};
@@ -529,8 +496,8 @@ void Driver<Backend>::step(double dt) {
   ++steps_;
 }
 
-template <class Backend>
-void Driver<Backend>::advance_to(double t) {
+template <Backend B>
+void Driver<B>::advance_to(double t) {
   // Equal steps no longer than the CFL limit, so the last one is not a
   // sliver; the final step lands on t exactly.
   while (time_ < t) {
