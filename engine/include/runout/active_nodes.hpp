@@ -12,7 +12,6 @@
 // that needs more storage is cleared whole. Sums over the nodes and the
 // grid's totals then read the same as a dense grid's.
 #include <algorithm>
-#include <limits>
 #include <vector>
 
 #include "runout/grid.hpp"
@@ -125,10 +124,6 @@ class ActiveNodes {
   int nodes() const { return nodes_; }
 
  private:
-  static void clear_node(const GridView& g, int n) {
-    g.m[n] = g.vol[n] = g.px[n] = g.py[n] = g.fx[n] = g.fy[n] = g.fbase[n] = 0.0;
-    g.gap[n] = std::numeric_limits<double>::infinity();
-  }
   // Columns [c0, c1] of row j, clamped to the box, in runs of at most
   // kChunk nodes.
   void add_run(const GridView& g, int j, int c0, int c1) {

@@ -37,7 +37,9 @@ class HostBackend {
   const Grid& grid() const { return grid_; }
 
   GridView fit_grid(const GridView& placed) {
-    return fit_grid_with(placed, [](const GridView& g) { clear_sums(g, 0, g.size()); });
+    const GridView& g = grid_.fit(placed);
+    for (int n = 0; n < g.size(); ++n) clear_node(g, n);
+    return g;
   }
   // The base's force is summed in node order, so the same every run.
   double sum_nodes(const GridView& g, const double* a) const {
@@ -59,15 +61,6 @@ class HostBackend {
   const StepConfig& kernel_config(const StepConfig& c) const { return c; }
 
  protected:
-  // The grid fitted to placed and cleared by clear(g) (clear_sums, as
-  // the backend runs it).
-  template <class Clear>
-  GridView fit_grid_with(const GridView& placed, Clear&& clear) {
-    const GridView& g = grid_.fit(placed);
-    clear(g);
-    return g;
-  }
-
   Particles particles_;
   Grid grid_;
   std::vector<MaterialParams> materials_;

@@ -115,9 +115,8 @@ class OpenMpBackend : public HostBackend {
       active_.whole(g);
       return;
     }
-    const int blocks_x = (g.nx - 1 + kBlock - 1) / kBlock;
-    active_.find(g, kBlock, blocks_x, blocks_y_, [&](int bi, int by) {
-      const int b = ((bi / kStrip) * blocks_y_ + by) * kStrip + bi % kStrip;
+    active_.find(g, kBlock, strips_ * kStrip, blocks_y_, [&](int bi, int by) {
+      const unsigned b = block_number(bi, by, blocks_y_);
       return block_start_[b + 1] > block_start_[b];
     });
   }
@@ -295,6 +294,11 @@ class OpenMpBackend : public HostBackend {
   // in each strip block row by block row, so that a strip's particles, and
   // a row of it, lie together in the block order and, once permuted, in
   // memory: the scatters and the cell groups then read it in sequence.
+  // Block (bi, by)'s place in the block order: strip by strip, in each
+  // strip block row by block row.
+  static unsigned block_number(unsigned bi, unsigned by, unsigned blocks_y) {
+    return ((bi / kStrip) * blocks_y + by) * kStrip + bi % kStrip;
+  }
   int group_start(int strip, int by) const {
     return block_start_[(strip * blocks_y_ + by) * kStrip];
   }
@@ -316,7 +320,7 @@ class OpenMpBackend : public HostBackend {
     const unsigned blocks_up = by;
     const auto place = [=](int p, unsigned ci, unsigned cj) {
       const unsigned bi = ci / kBlock;
-      block[p] = static_cast<int>(((bi / kStrip) * blocks_up + cj / kBlock) * kStrip + bi % kStrip);
+      block[p] = static_cast<int>(block_number(bi, cj / kBlock, blocks_up));
       cell[p] = static_cast<int>((cj % kGroupCellsY) * kGroupCellsX + ci % kGroupCellsX);
     };
     const bool gimp = c.shape == ShapeKind::Gimp;

@@ -3,10 +3,7 @@
 // scene's domain. Node (i, j) of the box is global node (i0 + i, j0 + j),
 // global node (0, 0) being the domain's min corner. Nodal fields are reset
 // every step, so moving the box costs nothing but a resize when it grows.
-#include <algorithm>
 #include <cmath>
-#include <initializer_list>
-#include <limits>
 #include <vector>
 
 #include "runout/host_device.hpp"
@@ -59,18 +56,18 @@ inline void place_box(GridView& g, double xmin, double xmax, double ymin, double
   g.oy = domain_y + g.j0 * h;
 }
 
-// Zeroes what p2g adds into (mass, volume, momentum, force) and sets the
-// gap to +infinity (no particle), at the nodes [begin, end): a
-// multi-threaded backend clears its ranges on all its threads.
-inline void clear_sums(const GridView& g, int begin, int end) {
-  for (double* a : {g.m, g.vol, g.px, g.py, g.fx, g.fy}) std::fill(a + begin, a + end, 0.0);
-  std::fill(g.gap + begin, g.gap + end, std::numeric_limits<double>::infinity());
+// Empties node n for the next p2g: what p2g adds into (mass, volume,
+// momentum, force) and the base's force zero, the gap +infinity (no
+// particle).
+RUNOUT_HD inline void clear_node(const GridView& g, int n) {
+  g.m[n] = g.vol[n] = g.px[n] = g.py[n] = g.fx[n] = g.fy[n] = g.fbase[n] = 0.0;
+  g.gap[n] = INFINITY;
 }
 
 class Grid {
  public:
   // Takes the box of `placed` (place_box); the caller clears what p2g
-  // adds into (clear_sums). Storage only ever grows.
+  // adds into (clear_node). Storage only ever grows.
   const GridView& fit(const GridView& placed);
   GridView view() { return view_; }
   const GridView& view() const { return view_; }
