@@ -149,6 +149,18 @@ def cell_styles(cells):
             for k, h in enumerate(cells)}
 
 
+def reference_name(rows):
+    """What the study's errors are measured against, in words."""
+    refs = {r.get("reference", "") for r in rows if r["status"] == "ok"} - {""}
+    if refs == {"analytic-block"}:
+        return "the rigid block (exact)"
+    ids = {r["id"]: r for r in rows}
+    if len(refs) == 1 and next(iter(refs)) in ids:
+        ref = ids[next(iter(refs))]
+        return "%s, h = %g m" % (series_label(ref), ref["cell"])
+    return "the finest run"
+
+
 def usable(row, metric=ERROR):
     return row["status"] == "ok" and row[metric] > 0 and math.isfinite(row[metric])
 
@@ -222,7 +234,7 @@ def cell_legend(ax, cells, loc, title="cell size h", colour=True, marker=True, *
     handles = [Line2D([], [], color=styles[h][0] if colour else "0.35",
                       marker=styles[h][1] if marker else None, ls="-" if not marker else "",
                       label="%g m" % h) for h in sorted(styles, reverse=True)]
-    return ax.add_artist(ax.legend(handles=handles, title=title, loc=loc, **kw))
+    return ax.add_artist(ax.legend(handles=handles, title=title, title_fontsize=8, loc=loc, **kw))
 
 
 def chart_error_vs_wall(rows, path, title="", metric=ERROR):
@@ -254,7 +266,8 @@ def chart_error_vs_wall(rows, path, title="", metric=ERROR):
     label(ax, "wall time per run, one thread [s]", error_label(metric),
           title or "Error against cost", legend=False)
     cell_legend(ax, cells, "upper left", colour=False, bbox_to_anchor=(1.02, 0.45))
-    ax.legend(title="series", loc="lower left", bbox_to_anchor=(1.02, 0.5))
+    ax.legend(title="errors against\n" + reference_name(rows), title_fontsize=8,
+              loc="lower left", bbox_to_anchor=(1.02, 0.5))
     write(fig, path)
 
 
@@ -278,12 +291,13 @@ def chart_convergence(rows, path, title="", metric=ERROR):
             # The fitted e = C h^p through the points' geometric mean.
             log_c = sum(math.log(ei) - p * math.log(hi) for hi, ei in zip(h, e)) / len(h)
             ax.loglog(h, [math.exp(log_c) * hi ** p for hi in h], ":", color=colours[name])
-    ax.plot([], [], "k:", label="fitted C h^p")
+    ax.plot([], [], "k:", label="fitted $C\,h^p$")
     ax.margins(0.08)
     readable_log_axis(ax, "x", sorted(cells))
     readable_log_axis(ax, "y")
     label(ax, "cell size h [m]", error_label(metric), title or "Convergence", legend=False)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0),
+              title="errors against\n" + reference_name(rows), title_fontsize=8)
     write(fig, path)
 
 
