@@ -565,7 +565,7 @@ def chart_mechanism_map(rows, key_x, key_y, path, title=""):
     for p, (_, r) in best.items():
         runout = r.get("runout_end", math.nan)
         if r["status"] == "ok" and isinstance(runout, float) and math.isfinite(runout):
-            ax.annotate("%.3g m" % runout, p, xytext=(0, -15), textcoords="offset points",
+            ax.annotate(("%.0f m" if runout >= 10 else "%.1f m") % runout, p, xytext=(0, -15), textcoords="offset points",
                         ha="center", va="center", fontsize=7, color="0.25")
     # Keys swept over decades (a sensitivity of 1 to 40) read better on a
     # log axis, ticked at the values swept, in the unit of the axis label.
