@@ -522,10 +522,18 @@ def chart_exceedance(rows, path, title="", metric="runout_end", alpha=0.05):
     xs, ps = [x[0] - pad] + x, [1.0] + p
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     ax.fill_between(xs, [max(0.0, q - eps) for q in ps], [min(1.0, q + eps) for q in ps],
-                    step="post", color=OKABE_ITO[0], alpha=0.2, lw=0,
+                    step="post", color=OKABE_ITO[0], alpha=0.2,
                     label="%d %% band (DKW, n = %d: ±%.2f)" % (100 * (1 - alpha), n, eps))
     ax.step(xs, ps, where="post", color=OKABE_ITO[0], lw=1.5,
             label="empirical P(X > x), X the %s" % metric_name(metric))
+    # Runs still moving at their end (no stop time where others have one):
+    # their runouts are lower bounds, marked where they sit on the steps.
+    moving = [r[metric] for r in rows if r["status"] == "ok" and math.isfinite(r[metric])
+              and not math.isfinite(r.get("stop_time", math.nan))]
+    if 0 < len(moving) < n:
+        ax.plot(moving, [sum(v > m for v in values) / n for m in moving], ">", ms=7,
+                color=OKABE_ITO[3], mec="k", mew=0.5, ls="",
+                label="still moving at the end (a lower bound), %d runs" % len(moving))
     ax.set_ylim(0, 1.02)
     save(fig, ax, path, "%s x [m]" % metric_name(metric), "probability of exceedance P(X > x)",
          "%s (%d of %d runs finished)" % (title or "Probability that the runout exceeds x", n, ran))
