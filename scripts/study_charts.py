@@ -445,7 +445,10 @@ def chart_dam_vs_mpm(study_dir, rows, path, title=""):
                                                (("depth-averaged model", dam), OKABE_ITO[1], "s")):
             ax.plot(angles, [runs[a][metric] for a in angles], "-", marker=marker, color=colour,
                     ms=5, label=method)
-        label(ax, "", name + " [m]", name + " at the end", legend=k == 0)
+        # Half-width panels over a full-width one: each is read on its own
+        # angle axis, so each carries its tick labels and name.
+        ax.xaxis.set_tick_params(labelbottom=True)
+        label(ax, "slope angle [deg]", name + " [m]", name + " at the end", legend=k == 0)
         if metric in ("runout_end", "centroid_travel"):  # over two decades
             ax.set_yscale("log")
             readable_log_axis(ax, "y")
