@@ -339,9 +339,9 @@ def chart_runout_history(study_dir, rows, path, title="", analytic=None):
     else:
         reference, ref_name = None, ""
     nrows = 2 if reference else 1
-    fig, axes = plt.subplots(nrows, len(panels), figsize=(4.2 * len(panels) + 2.4, 3.2 * nrows + 0.6),
-                             sharex=True, sharey="row", squeeze=False,
-                             gridspec_kw={"height_ratios": [1.6, 1][:nrows]})
+    size = (4.2 * len(panels) + 2.4, 3.2 * nrows + 0.6)
+    fig, axes = plt.subplots(nrows, len(panels), figsize=size, sharex=True, sharey="row",
+                             squeeze=False, gridspec_kw={"height_ratios": [1.6, 1][:nrows]})
     for col, panel in enumerate(panels):
         top = axes[0][col]
         for r in sorted((r for r in ok if panel_label(r) == panel), key=lambda r: -r["cell"]):
@@ -576,7 +576,8 @@ def chart_mechanism_map(rows, key_x, key_y, path, title=""):
     for p, (_, r) in best.items():
         runout = r.get("runout_end", math.nan)
         if r["status"] == "ok" and isinstance(runout, float) and math.isfinite(runout):
-            ax.annotate(("%.0f m" if runout >= 10 else "%.1f m") % runout, p, xytext=(0, -15), textcoords="offset points",
+            ax.annotate(("%.0f m" if runout >= 10 else "%.1f m") % runout, p, xytext=(0, -15),
+                        textcoords="offset points",
                         ha="center", va="center", fontsize=7, color="0.25")
     # Keys swept over decades (a sensitivity of 1 to 40) read better on a
     # log axis, ticked at the values swept, in the unit of the axis label.

@@ -211,12 +211,13 @@ with tempfile.TemporaryDirectory() as d:
         for k, h in enumerate((1.6, 1.2, 0.8, 0.6, 0.4)):
             rid = "%s_cpu_%sh%g%s" % (method, "gimp_" if method == "mpm" else "", h,
                                       "_ppc2" if method == "mpm" else "")
-            err = (0.02 / (k + 1) if method == "mpm" else 0.0075) if rid != "mpm_cpu_gimp_h0.4_ppc2" \
-                else 0.0
+            err = 0.0 if rid == "mpm_cpu_gimp_h0.4_ppc2" else \
+                0.02 / (k + 1) if method == "mpm" else 0.0075
             rows.append({"id": rid, "method": method, "backend": "cpu",
                          "shape": "gimp" if method == "mpm" else "", "cell": h,
                          "ppc": 2 if method == "mpm" else "", "domain_x_max": 600,
-                         "status": "ok", "wall_s": 0.7 + (60 / 4 ** (4 - k) if method == "mpm" else 0),
+                         "status": "ok",
+                         "wall_s": 0.7 + (60 / 4 ** (4 - k) if method == "mpm" else 0),
                          "end_time": 20, "runout_end": 86.7 * (1 + err), "err_runout_end": err,
                          "pareto": 0, "observed_order": 1.9 if method == "mpm" else 0.01,
                          "reference": "mpm_cpu_gimp_h0.4_ppc2", "mechanism": "block sliding"})
@@ -278,4 +279,5 @@ with tempfile.TemporaryDirectory() as d:
 
 assert not faults, "\n".join(faults)
 
-print("study charts: exceedance, DKW band and mechanism map as expected; %d charts drawn, judged without a fault" % len(study_charts.FIGURES))
+print("study charts: exceedance, DKW band and mechanism map as expected; %d charts drawn, "
+      "judged without a fault" % len(study_charts.FIGURES))
