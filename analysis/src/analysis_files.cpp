@@ -5,8 +5,8 @@
 #include <regex>
 
 #include "runout/analysis/result_columns.hpp"
-#include "runout/atomic_file.hpp"
-#include "runout/morphology.hpp"
+#include "runout/output/atomic_file.hpp"
+#include "runout/measure/morphology.hpp"
 #include "text_format.hpp"
 
 namespace runout::analysis {

@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "child_process.hpp"
-#include "runout/atomic_file.hpp"
-#include "runout/file_text.hpp"
-#include "runout/run_control.hpp"
+#include "runout/output/atomic_file.hpp"
+#include "runout/output/file_text.hpp"
+#include "runout/run/run_control.hpp"
 
 namespace runout {
 namespace {
