@@ -180,8 +180,12 @@ struct FrameParser {
   }
 
   VtuArray array(const Element& e, std::string& name) const {
-    if (e.name != "DataArray")
-      refuse("<" + std::string(e.name) + "> where the engine writes a <DataArray>");
+    if (e.name != "DataArray") {
+      std::string what = "<";
+      what += e.name;
+      what += "> where the engine writes a <DataArray>";
+      refuse(what);
+    }
     name = std::string(required(e, "Name"));
     const std::string quoted = "the array \"" + name + "\"";
     const std::string_view format = required(e, "format");

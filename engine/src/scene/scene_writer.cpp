@@ -23,7 +23,12 @@ std::string number(double value) {
 }
 
 std::string vec2(const Eigen::Vector2d& v) {
-  return "[" + number(v.x()) + ", " + number(v.y()) + "]";
+  std::string text = "[";
+  text += number(v.x());
+  text += ", ";
+  text += number(v.y());
+  text += ']';
+  return text;
 }
 
 std::string points(const std::vector<Eigen::Vector2d>& list) {
