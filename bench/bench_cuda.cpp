@@ -10,10 +10,10 @@
 #include <cmath>
 #include <string>
 
-#include "runout/cuda_simulation.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/seeding.hpp"
-#include "runout/simulation.hpp"
+#include "runout/mpm/cuda_simulation.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/seeding.hpp"
+#include "runout/mpm/simulation.hpp"
 
 namespace {
 

@@ -9,8 +9,8 @@
 
 #include <cmath>
 
-#include "runout/scene_parser.hpp"
-#include "runout/simulation.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/simulation.hpp"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // libFuzzer target: arbitrary bytes as a particle frame, read by the
-// engine's own reader (runout/vtu_reader.hpp) and, when it reads, analysed
+// engine's own reader (runout/output/vtu_reader.hpp) and, when it reads, analysed
 // as `runout analyse` analyses a frame (docs/fuzzing.md). A VtuReadError,
 // or a frame analyse_frame refuses, is the expected answer to bad input;
 // a crash, another exception or a sanitizer report is a bug.
@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "runout/analysis/run_analysis.hpp"
-#include "runout/vtu_reader.hpp"
+#include "runout/output/vtu_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   runout::VtuFrame frame;

@@ -10,9 +10,9 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "runout/memory_estimate.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/seeding.hpp"
+#include "runout/run/memory_estimate.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/seeding.hpp"
 
 namespace {
 

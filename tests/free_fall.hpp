@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "runout/particles.hpp"
+#include "runout/mpm/particles.hpp"
 #include "scene_builders.hpp"
 
 namespace runout::fixtures {

@@ -1,8 +1,8 @@
 #pragma once
 // Scenes built in code for the physics tests, so that they do not depend on
 // the scene parser.
-#include "runout/particles.hpp"
-#include "runout/scene.hpp"
+#include "runout/mpm/particles.hpp"
+#include "runout/scene/scene.hpp"
 
 namespace runout::fixtures {
 

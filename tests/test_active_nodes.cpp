@@ -11,9 +11,9 @@
 #include <set>
 #include <vector>
 
-#include "runout/active_nodes.hpp"
-#include "runout/simulation.hpp"
-#include "runout/stencil.hpp"
+#include "runout/mpm/active_nodes.hpp"
+#include "runout/mpm/simulation.hpp"
+#include "runout/mpm/stencil.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

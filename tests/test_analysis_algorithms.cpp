@@ -23,7 +23,7 @@
 #include "runout/analysis/plastic_strain.hpp"
 #include "runout/analysis/result_columns.hpp"
 #include "runout/analysis/shear_bands.hpp"
-#include "runout/polygon.hpp"
+#include "runout/scene/polygon.hpp"
 
 using namespace runout::analysis;
 using namespace runout::lattice_fixtures;

@@ -11,8 +11,8 @@
 
 #include "cli_runner.hpp"
 #include "run_folder.hpp"
-#include "runout/checkpoint.hpp"
-#include "runout/simulation.hpp"
+#include "runout/output/checkpoint.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

@@ -27,10 +27,10 @@
 #include <map>
 #include <vector>
 
-#include "runout/diagnostics.hpp"
-#include "runout/morphology.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/simulation.hpp"
+#include "runout/measure/diagnostics.hpp"
+#include "runout/measure/morphology.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

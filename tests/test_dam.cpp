@@ -17,10 +17,10 @@
 #include <sstream>
 #include <string>
 
-#include "runout/dam.hpp"
-#include "runout/materials.hpp"
-#include "runout/polygon.hpp"
-#include "runout/scene_parser.hpp"
+#include "runout/dam/dam.hpp"
+#include "runout/scene/materials.hpp"
+#include "runout/scene/polygon.hpp"
+#include "runout/scene/scene_parser.hpp"
 #include "cli_runner.hpp"
 #include "scene_builders.hpp"
 

@@ -25,14 +25,14 @@
 #include <vector>
 
 #include "free_fall.hpp"
-#include "runout/diagnostics.hpp"
-#include "runout/morphology.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/seeding.hpp"
-#include "runout/simulation.hpp"
+#include "runout/measure/diagnostics.hpp"
+#include "runout/measure/morphology.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/seeding.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
 #ifdef RUNOUT_HAVE_CUDA
-#include "runout/cuda_simulation.hpp"
+#include "runout/mpm/cuda_simulation.hpp"
 #endif
 
 using namespace runout;

@@ -33,9 +33,9 @@
 #include <vector>
 
 #include "filter_fixtures.hpp"
-#include "runout/history.hpp"
-#include "runout/seeding.hpp"
-#include "runout/vtu_writer.hpp"
+#include "runout/output/history.hpp"
+#include "runout/mpm/seeding.hpp"
+#include "runout/output/vtu_writer.hpp"
 #include "run_folder.hpp"
 #include "scene_builders.hpp"
 #include "vtkRunoutHorstGraben.h"

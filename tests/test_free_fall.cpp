@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "runout/simulation.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "free_fall.hpp"
 
 using namespace runout;

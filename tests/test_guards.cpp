@@ -14,9 +14,9 @@
 
 #include "cli_runner.hpp"
 #include "run_folder.hpp"
-#include "runout/checkpoint.hpp"
-#include "runout/run.hpp"
-#include "runout/simulation.hpp"
+#include "runout/output/checkpoint.hpp"
+#include "runout/run/run.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
 #include "vtu_text.hpp"
 

@@ -19,8 +19,8 @@
 
 #include "cli_runner.hpp"
 #include "run_folder.hpp"
-#include "runout/history.hpp"
-#include "runout/scene_parser.hpp"
+#include "runout/output/history.hpp"
+#include "runout/scene/scene_parser.hpp"
 
 using namespace runout;
 using namespace runout::run_folder;

@@ -28,7 +28,7 @@
 
 #include "cli_runner.hpp"
 #include "run_folder.hpp"
-#include "runout/checkpoint.hpp"
+#include "runout/output/checkpoint.hpp"
 
 using namespace runout;
 using namespace runout::run_folder;

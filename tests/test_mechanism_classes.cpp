@@ -14,7 +14,7 @@
 
 #include "cli_runner.hpp"
 #include "run_folder.hpp"
-#include "runout/run_summary_file.hpp"
+#include "runout/output/run_summary_file.hpp"
 
 namespace {
 

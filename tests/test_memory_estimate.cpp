@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "runout/dam.hpp"
-#include "runout/memory_estimate.hpp"
-#include "runout/polygon.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/seeding.hpp"
+#include "runout/dam/dam.hpp"
+#include "runout/run/memory_estimate.hpp"
+#include "runout/scene/polygon.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/seeding.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "runout/base.hpp"
-#include "runout/morphology.hpp"
+#include "runout/mpm/base.hpp"
+#include "runout/measure/morphology.hpp"
 
 namespace fs = std::filesystem;
 using namespace runout;

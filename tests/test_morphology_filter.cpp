@@ -30,7 +30,7 @@
 
 #include "runout/analysis/morphology_rules.hpp"
 #include "filter_fixtures.hpp"
-#include "runout/vtu_writer.hpp"
+#include "runout/output/vtu_writer.hpp"
 #include "vtkRunoutMorphology.h"
 #include "vtkRunoutMorphologyHistory.h"
 

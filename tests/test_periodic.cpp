@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <map>
 
-#include "runout/simulation.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

@@ -8,7 +8,7 @@
 #include <random>
 #include <utility>
 
-#include "runout/polygon.hpp"
+#include "runout/scene/polygon.hpp"
 
 using namespace runout;
 

@@ -19,11 +19,11 @@
 
 #include "csv_table.hpp"
 #include "run_folder.hpp"
-#include "runout/diagnostics.hpp"
-#include "runout/morphology.hpp"
-#include "runout/run.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/simulation.hpp"
+#include "runout/measure/diagnostics.hpp"
+#include "runout/measure/morphology.hpp"
+#include "runout/run/run.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/simulation.hpp"
 
 using namespace runout;
 

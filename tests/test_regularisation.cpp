@@ -20,10 +20,10 @@
 #include <cstdlib>
 #include <vector>
 
-#include "runout/morphology.hpp"
-#include "runout/nonlocal.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/simulation.hpp"
+#include "runout/measure/morphology.hpp"
+#include "runout/mpm/nonlocal.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

@@ -34,8 +34,8 @@
 
 #include "cli_runner.hpp"
 #include "run_folder.hpp"
-#include "runout/atomic_file.hpp"
-#include "runout/checkpoint.hpp"
+#include "runout/output/atomic_file.hpp"
+#include "runout/output/checkpoint.hpp"
 
 using namespace runout;
 using namespace runout::run_folder;

@@ -1,4 +1,4 @@
-// summary.json (runout/run_summary_file.hpp): its JSON read back as
+// summary.json (runout/output/run_summary_file.hpp): its JSON read back as
 // written, its refusals, and what `runout run` writes into it for an MPM
 // and a depth-averaged run, against the run's own history.csv and scene.
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 #include <iterator>
 
 #include "cli_runner.hpp"
-#include "runout/run_summary_file.hpp"
-#include "runout/study.hpp"
+#include "runout/output/run_summary_file.hpp"
+#include "runout/study/study.hpp"
 
 using namespace runout;
 namespace fs = std::filesystem;

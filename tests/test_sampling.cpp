@@ -7,8 +7,8 @@
 #include <cmath>
 #include <set>
 
-#include "runout/sampling.hpp"
-#include "runout/scene_parser.hpp"
+#include "runout/study/sampling.hpp"
+#include "runout/scene/scene_parser.hpp"
 
 using namespace runout;
 using namespace runout::sampling;

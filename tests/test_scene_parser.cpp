@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "runout/polygon.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/seeding.hpp"
+#include "runout/scene/polygon.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/seeding.hpp"
 
 namespace runout {
 namespace {

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <iterator>
 
-#include "runout/scene_parser.hpp"
-#include "runout/scene_settings.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/scene/scene_settings.hpp"
 
 using namespace runout;
 

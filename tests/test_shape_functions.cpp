@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
-#include "runout/particles.hpp"
-#include "runout/shape.hpp"
-#include "runout/stages.hpp"
+#include "runout/mpm/particles.hpp"
+#include "runout/mpm/shape.hpp"
+#include "runout/mpm/stages.hpp"
 
 using namespace runout;
 

@@ -17,7 +17,7 @@
 
 #include <cmath>
 
-#include "runout/simulation.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

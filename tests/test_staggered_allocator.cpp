@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "runout/grid.hpp"
-#include "runout/particles.hpp"
+#include "runout/mpm/grid.hpp"
+#include "runout/mpm/particles.hpp"
 
 using namespace runout;
 

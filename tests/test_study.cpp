@@ -13,8 +13,8 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/study.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/study/study.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

@@ -6,7 +6,7 @@
 #include <functional>
 #include <map>
 
-#include "runout/thread_governor.hpp"
+#include "runout/run/thread_governor.hpp"
 
 namespace {
 

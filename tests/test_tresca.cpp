@@ -12,9 +12,9 @@
 #include <initializer_list>
 #include <vector>
 
-#include "runout/material.hpp"
-#include "runout/particles.hpp"
-#include "runout/stages.hpp"
+#include "runout/mpm/material.hpp"
+#include "runout/mpm/particles.hpp"
+#include "runout/mpm/stages.hpp"
 
 namespace runout {
 namespace {

@@ -26,7 +26,7 @@
 #include <tuple>
 #include <vector>
 
-#include "runout/vtu_writer.hpp"
+#include "runout/output/vtu_writer.hpp"
 
 namespace fs = std::filesystem;
 using namespace runout;

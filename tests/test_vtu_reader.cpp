@@ -1,4 +1,4 @@
-// The engine's frames read back without VTK (runout/vtu_reader.hpp): every
+// The engine's frames read back without VTK (runout/output/vtu_reader.hpp): every
 // array write_particles_vtu writes comes back as written, compressed or
 // not, over several zlib blocks and for no particles; base64 and the array
 // decoder against known values; and each layout the reader refuses (VTK's
@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "run_folder.hpp"
-#include "runout/base64.hpp"
-#include "runout/vtk_xml.hpp"
-#include "runout/vtu_reader.hpp"
-#include "runout/vtu_writer.hpp"
+#include "runout/output/base64.hpp"
+#include "runout/output/vtk_xml.hpp"
+#include "runout/output/vtu_reader.hpp"
+#include "runout/output/vtu_writer.hpp"
 
 using runout::VtuArray;
 using runout::VtuFrame;

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "runout/atomic_file.hpp"
-#include "runout/base64.hpp"
-#include "runout/vtu_writer.hpp"
+#include "runout/output/atomic_file.hpp"
+#include "runout/output/base64.hpp"
+#include "runout/output/vtu_writer.hpp"
 #include "vtu_text.hpp"
 
 namespace fs = std::filesystem;

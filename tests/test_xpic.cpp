@@ -12,8 +12,8 @@
 #include <cmath>
 #include <random>
 
-#include "runout/diagnostics.hpp"
-#include "runout/simulation.hpp"
+#include "runout/measure/diagnostics.hpp"
+#include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;

@@ -5,8 +5,8 @@
 #include <regex>
 
 #include "runout/analysis/result_columns.hpp"
-#include "runout/atomic_file.hpp"
-#include "runout/morphology.hpp"
+#include "runout/output/atomic_file.hpp"
+#include "runout/measure/morphology.hpp"
 #include "text_format.hpp"
 
 namespace runout::analysis {
@@ -52,7 +52,10 @@ std::string item_table(double time, const char* id_name, const std::vector<Item>
   out += '\n';
   for (std::size_t k = 0; k < items.size(); ++k) {
     out += std::to_string(k);
-    for (const Column<Item>& c : columns) out += "," + cell(c, items[k], false);
+    for (const Column<Item>& c : columns) {
+      out += ',';
+      out += cell(c, items[k], false);
+    }
     out += '\n';
   }
   return out;
@@ -64,7 +67,10 @@ std::string morphology_table(const RunAnalysis& run) {
   out += '\n';
   for (const FrameAnalysis& f : run.frames) {
     out += std::to_string(f.index) + "," + text::csv_number(f.time);
-    for (const auto& c : morphology_columns()) out += "," + cell(c, f.morphology, false);
+    for (const auto& c : morphology_columns()) {
+      out += ',';
+      out += cell(c, f.morphology, false);
+    }
     out += '\n';
   }
   return out;

@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "runout/analysis/run_analysis.hpp"
-#include "runout/study.hpp"
-#include "runout/vtu_writer.hpp"
+#include "runout/study/study.hpp"
+#include "runout/output/vtu_writer.hpp"
 
 namespace runout::analysis {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "runout/morphology.hpp"
+#include "runout/measure/morphology.hpp"
 
 namespace runout::analysis {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "runout/morphology.hpp"
-#include "runout/particles.hpp"
+#include "runout/measure/morphology.hpp"
+#include "runout/mpm/particles.hpp"
 
 namespace runout::analysis {
 

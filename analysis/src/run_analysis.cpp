@@ -7,7 +7,7 @@
 #include "runout/analysis/frame_base.hpp"
 #include "runout/analysis/frame_checks.hpp"
 #include "runout/analysis/tuples.hpp"
-#include "runout/vtu_writer.hpp"
+#include "runout/output/vtu_writer.hpp"
 
 namespace runout::analysis {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "runout/quoted_text.hpp"
+#include "runout/output/quoted_text.hpp"
 
 namespace runout::analysis::text {
 

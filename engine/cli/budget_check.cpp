@@ -9,11 +9,11 @@
 #include <string>
 
 #include "exit_codes.hpp"
-#include "runout/dam.hpp"
-#include "runout/device_info.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/simulation.hpp"
-#include "runout/study.hpp"
+#include "runout/dam/dam.hpp"
+#include "runout/run/device_info.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/simulation.hpp"
+#include "runout/study/study.hpp"
 
 namespace runout {
 namespace {

@@ -6,7 +6,7 @@
 // method it would pick and why (docs/study.md).
 #include <chrono>
 
-#include "runout/scene.hpp"
+#include "runout/scene/scene.hpp"
 
 namespace runout {
 

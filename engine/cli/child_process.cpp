@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <thread>
 
-#include "runout/run_control.hpp"
+#include "runout/run/run_control.hpp"
 
 namespace runout {
 

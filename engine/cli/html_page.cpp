@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "runout/base64.hpp"
+#include "runout/output/base64.hpp"
 
 namespace runout::html {
 

@@ -3,7 +3,7 @@
 // lines at most every few seconds otherwise (logs, CI).
 #include <string>
 
-#include "runout/run.hpp"
+#include "runout/run/run.hpp"
 
 namespace runout {
 

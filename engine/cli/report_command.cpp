@@ -13,11 +13,11 @@
 #include "html_page.hpp"
 #include "runout/analysis/result_columns.hpp"
 #include "runout/analysis/run_analysis.hpp"
-#include "runout/atomic_file.hpp"
-#include "runout/file_text.hpp"
-#include "runout/run_summary_file.hpp"
-#include "runout/scene_parser.hpp"
-#include "runout/study.hpp"
+#include "runout/output/atomic_file.hpp"
+#include "runout/output/file_text.hpp"
+#include "runout/output/run_summary_file.hpp"
+#include "runout/scene/scene_parser.hpp"
+#include "runout/study/study.hpp"
 
 namespace runout {
 

@@ -1,6 +1,6 @@
 #include "scene_loading.hpp"
 
-#include "runout/scene_parser.hpp"
+#include "runout/scene/scene_parser.hpp"
 
 namespace runout::cli {
 

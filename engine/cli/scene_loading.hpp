@@ -4,8 +4,8 @@
 #include <optional>
 #include <string>
 
-#include "runout/memory_estimate.hpp"
-#include "runout/scene.hpp"
+#include "runout/run/memory_estimate.hpp"
+#include "runout/scene/scene.hpp"
 
 namespace runout::cli {
 

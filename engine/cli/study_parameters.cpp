@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <string>
 
-#include "runout/sampling.hpp"
-#include "runout/scene_parser.hpp"
+#include "runout/study/sampling.hpp"
+#include "runout/scene/scene_parser.hpp"
 
 namespace runout {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "runout/scene_settings.hpp"
+#include "runout/scene/scene_settings.hpp"
 
 namespace runout {
 

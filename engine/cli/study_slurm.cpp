@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "child_process.hpp"
-#include "runout/atomic_file.hpp"
-#include "runout/file_text.hpp"
-#include "runout/run_control.hpp"
+#include "runout/output/atomic_file.hpp"
+#include "runout/output/file_text.hpp"
+#include "runout/run/run_control.hpp"
 
 namespace runout {
 namespace {
@@ -27,8 +27,12 @@ std::string array_spec(const std::vector<std::size_t>& indices) {
   for (std::size_t k = 0; k < indices.size();) {
     std::size_t end = k;
     while (end + 1 < indices.size() && indices[end + 1] == indices[end] + 1) ++end;
-    spec += (spec.empty() ? "" : ",") + std::to_string(indices[k]);
-    if (end > k) spec += "-" + std::to_string(indices[end]);
+    if (!spec.empty()) spec += ',';
+    spec += std::to_string(indices[k]);
+    if (end > k) {
+      spec += '-';
+      spec += std::to_string(indices[end]);
+    }
     k = end + 1;
   }
   return spec;
@@ -56,7 +60,10 @@ int run_on_slurm(const fs::path& study_dir, const std::vector<SlurmElement>& ele
   fs::create_directories(dir);
   for (std::size_t k = 0; k < elements.size(); ++k) {
     std::string line = "exec";
-    for (const std::string& word : elements[k].command) line += " " + quoted(word);
+    for (const std::string& word : elements[k].command) {
+      line += ' ';
+      line += quoted(word);
+    }
     line += " > " + quoted(fs::absolute(elements[k].log).string()) + " 2>&1\n";
     write_file_atomically((dir / ("element_" + std::to_string(k) + ".sh")).string(),
                           "#!/bin/bash\n" + line);

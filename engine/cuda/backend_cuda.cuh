@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "cuda_simulation.cuh"
-#include "runout/base.hpp"
-#include "runout/driver.hpp"
+#include "runout/mpm/base.hpp"
+#include "runout/mpm/driver.hpp"
 
 namespace runout {
 namespace cuda {

@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "backend_cuda.cuh"
-#include "runout/cuda_simulation.hpp"
-#include "runout/seeding.hpp"
+#include "runout/mpm/cuda_simulation.hpp"
+#include "runout/mpm/seeding.hpp"
 
 namespace runout {
 namespace cuda {

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "runout/device_info.hpp"
+#include "runout/run/device_info.hpp"
 
 namespace runout {
 

@@ -1,4 +1,4 @@
-#include "runout/device_info.hpp"
+#include "runout/run/device_info.hpp"
 
 namespace runout {
 

@@ -1,8 +1,8 @@
 // `runout run --backend cuda`: the MPM run of run.cpp over the CUDA driver.
 // The particles come back to the host for frames and history rows only.
-#include "../src/run_schedule.hpp"
-#include "runout/cuda_simulation.hpp"
-#include "runout/seeding.hpp"
+#include "../src/run/run_schedule.hpp"
+#include "runout/mpm/cuda_simulation.hpp"
+#include "runout/mpm/seeding.hpp"
 
 namespace runout {
 

@@ -18,7 +18,7 @@
 #include "runout/analysis/result_columns.hpp"
 #include "runout/analysis/shear_bands.hpp"
 #include "runout/analysis/vec2.hpp"
-#include "runout/base.hpp"
+#include "runout/mpm/base.hpp"
 
 class vtkAbstractArray;
 class vtkAlgorithm;

@@ -9,7 +9,7 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkXMLUnstructuredGridReader.h"
 
-#include "runout/vtu_writer.hpp"  // read_pvd_entries, FrameManifest
+#include "runout/output/vtu_writer.hpp"  // read_pvd_entries, FrameManifest
 
 #include <cmath>
 #include <filesystem>

@@ -8,14 +8,14 @@
 //   bands_NNNNN.csv     "# time = T", then band_id and the band columns
 //   blocks_NNNNN.csv    "# time = T", then block_id and the block columns
 //   profile_NNNNN.csv   the profile in the bins of --bin-spacings, in the
-//                       engine's profile format (runout/morphology.hpp)
+//                       engine's profile format (runout/measure/morphology.hpp)
 //   analysis.json       the parameters, every analysed frame with its
 //                       morphology, bands (with skeletons) and blocks (with
 //                       outlines), and the skipped frames with the reason
 #include <string>
 
 #include "runout/analysis/run_analysis.hpp"
-#include "runout/checkpoint.hpp"
+#include "runout/output/checkpoint.hpp"
 
 namespace runout::analysis {
 

@@ -4,7 +4,7 @@
 #include <optional>
 #include <vector>
 
-#include "runout/base.hpp"
+#include "runout/mpm/base.hpp"
 
 namespace runout::analysis {
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "runout/analysis/vec2.hpp"
-#include "runout/base.hpp"
-#include "runout/particles.hpp"
+#include "runout/mpm/base.hpp"
+#include "runout/mpm/particles.hpp"
 
 namespace runout::analysis {
 

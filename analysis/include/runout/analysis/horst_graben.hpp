@@ -4,7 +4,7 @@
 // analyse`. docs/filters.md, "Horsts and grabens", states the definitions.
 #include <vector>
 
-#include "runout/base.hpp"
+#include "runout/mpm/base.hpp"
 
 #include "runout/analysis/shear_bands.hpp"
 #include "runout/analysis/vec2.hpp"

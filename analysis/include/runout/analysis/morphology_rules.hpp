@@ -9,9 +9,9 @@
 #include <limits>
 #include <vector>
 
-#include "runout/base.hpp"
-#include "runout/morphology.hpp"
-#include "runout/particles.hpp"
+#include "runout/mpm/base.hpp"
+#include "runout/measure/morphology.hpp"
+#include "runout/mpm/particles.hpp"
 
 namespace runout::analysis {
 

@@ -1,6 +1,6 @@
 #pragma once
 // `runout analyse`: the shear bands, blocks and morphology of every frame of
-// a run, read from the engine's own frames (runout/vtu_reader.hpp) and
+// a run, read from the engine's own frames (runout/output/vtu_reader.hpp) and
 // measured with the algorithms and defaults of the VTK filters, which read
 // the same arrays (FrameArrays, MorphologyFrame), so the numbers are the
 // filters' (docs/analyse.md).
@@ -12,7 +12,7 @@
 #include "runout/analysis/horst_graben.hpp"
 #include "runout/analysis/morphology_rules.hpp"
 #include "runout/analysis/shear_bands.hpp"
-#include "runout/vtu_reader.hpp"
+#include "runout/output/vtu_reader.hpp"
 
 namespace runout::analysis {
 

@@ -5,7 +5,7 @@
 // the definitions.
 #include <vector>
 
-#include "runout/base.hpp"
+#include "runout/mpm/base.hpp"
 
 #include "runout/analysis/vec2.hpp"
 
