@@ -518,7 +518,7 @@ class Figures:
                 continue
             placed.append((x, y))
             row["marked"] = 1
-            self.text_at(view, f"{row['dip']:.0f} deg", x, y, height, BAND_RED)
+            self.text_at(view, f"{round(row['dip'])} deg", x, y, height, BAND_RED)
         with open(os.path.join(self.folder, f"strain_bands_t{t:07.2f}.csv"), "w",
                   newline="") as f:
             table_out = csv.DictWriter(f, ["centroid_x", "centroid_y", "dip", "length",

@@ -32,7 +32,7 @@ RunSummary run_dam(const Scene& scene, const RunOptions& options) {
   const auto start = Clock::now();
   if (options.checkpoint_every > 0)
     throw std::invalid_argument("the depth-averaged model writes no checkpoints");
-  DamSolver dam(scene);  // before the folder: a scene it cannot run leaves none
+  DamSolver dam(scene, options.memory);  // before the folder: a scene it cannot run leaves none
   const fs::path dir = prepare_folder(scene, options);
   const AdoptedFolderLock lock(dir.string());
 

@@ -29,12 +29,14 @@
 //           t_s, its base softening with the layer's mean shear strain.
 // Ambient water, where the scene asks for it, adds drag on the upper surface
 // and on an advancing face and the added mass of the water moved along.
+#include <optional>
 #include <vector>
 
 #include "runout/mpm/base.hpp"
 #include "runout/scene/polygon.hpp"
 #include "runout/scene/scene.hpp"
 #include "runout/mpm/strength.hpp"
+#include "runout/run/memory_estimate.hpp"
 
 namespace runout {
 
@@ -78,7 +80,9 @@ class DamSolver {
   // The slide is the first body of the scene; scene.dam sets the elements
   // and the shear rate estimate. Throws SceneError when the scene has no
   // [base] (the model runs along one) or the body is empty somewhere along it.
-  explicit DamSolver(const Scene& scene);
+  // checked: the run's memory estimate, already passed by require_memory
+  // (empty: the solver checks it itself).
+  explicit DamSolver(const Scene& scene, const std::optional<MemoryEstimate>& checked = {});
 
   void step(double dt);          // throws NumericalFailure
   void advance_to(double t);     // stable steps, the last one landing on t

@@ -35,7 +35,8 @@ struct RunOptions {
   // OpenMP's count.
   int adapt_threads = 0;
   // The memory estimate of the run, already passed by require_memory (the
-  // CLI's one estimate of a run): the MPM seeding does not make it again.
+  // CLI's one estimate of a run): the MPM seeding and the DAM do not make
+  // it again.
   // Empty: the run estimates and checks it itself.
   std::optional<MemoryEstimate> memory;
 };
