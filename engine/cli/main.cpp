@@ -39,6 +39,7 @@
 #include "runout/run/run_control.hpp"
 #include "runout/output/run_summary_file.hpp"
 #include "runout/scene/scene_parser.hpp"
+#include "runout/mpm/seeding.hpp"
 #include "runout/mpm/simulation.hpp"
 #include "runout/output/vtu_writer.hpp"
 #ifdef RUNOUT_HAVE_CUDA
@@ -175,7 +176,11 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
   // The threads a run of the scene would use, for the wall-time estimate.
   cli::use_default_threads(memory.items);
   const RunCost cost = estimate_cost(s, memory);
-  Simulation sim(s);
+  // Seeded without estimating again: the estimate above is the MPM's own
+  // where the scene runs the MPM.
+  Simulation sim(s, seed_particles(s, s.method == Method::Mpm
+                                          ? std::optional<MemoryEstimate>(memory)
+                                          : std::nullopt));
   const double dt = sim.stable_dt();
   const int n = sim.particles().size();
   const double h = s.grid.cell_size;
