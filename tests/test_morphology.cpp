@@ -13,8 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "runout/mpm/base.hpp"
+#include "runout/measure/basal_fill.hpp"
 #include "runout/measure/morphology.hpp"
+#include "runout/mpm/base.hpp"
 
 namespace fs = std::filesystem;
 using namespace runout;
@@ -454,4 +455,71 @@ TEST(SlideProfile, GapsBetweenStretchedColumnsAreClosedButGrabensStay) {
     }
   }
   EXPECT_EQ(in_graben, 6);
+}
+
+// ---------------------------------------------------------------- basal_fill.hpp
+
+namespace {
+
+// Each particle with its share of a lattice cell, spacing^2.
+Particles with_lattice_volumes(Particles P) {
+  for (int p = 0; p < P.size(); ++p) P.vol[p] = kSpacing * kSpacing;
+  return P;
+}
+
+}  // namespace
+
+// A lattice of particles tiles its basal layer on any cell that is a whole
+// number of spacings: 2 x 2 and 4 x 4 particles per cell alike.
+TEST(BasalFill, ALatticeTilesItsBasalLayer) {
+  const Frame f = planar_frame(0.5);
+  for (int ppc : {2, 4}) {
+    const double h = ppc * kSpacing;
+    const Particles P = with_lattice_volumes(make_particles(rectangle(f, 0.0, 12.0, 5.0)));
+    EXPECT_NEAR(basal_fill(P, planar_base(0.5), h), 1.0, 1e-12) << ppc;
+  }
+}
+
+TEST(BasalFill, ALayerParallelToEachSegmentOfAPolylineFillsItsBasalLayer) {
+  const Base base = escarpment();
+  const BaseView b = base.view();
+  const double h = 2 * kSpacing;
+  // Both segments are 100 m long, so each starts on a whole cell of s.
+  for (int segment : {0, 1}) {
+    const Particles P =
+        with_lattice_volumes(make_particles(rectangle(segment_frame(b, segment), 20.0, 60.0, 4.0)));
+    EXPECT_NEAR(basal_fill(P, b, h), 1.0, 1e-9) << segment;
+  }
+}
+
+// What the measure is for: particles that leave the basal layer, or crowd
+// into it, show as the fraction of the layer they cover.
+TEST(BasalFill, AThinnedOrCrowdedBasalLayerShowsAsItsShare) {
+  const Frame f = planar_frame(0.0);
+  const double h = 4 * kSpacing;
+  std::vector<Seed> thinned, crowded;
+  int k = 0;
+  for (const Seed& s : rectangle(f, 0.0, 12.0, 5.0)) {
+    const bool basal = s.y < h;
+    if (!basal || k++ % 2 == 0) thinned.push_back(s);
+    crowded.push_back(s);
+    if (s.y < kSpacing) crowded.push_back(f.at(s.x, s.y + 0.5 * kSpacing));  // a fifth row
+  }
+  EXPECT_NEAR(basal_fill(with_lattice_volumes(make_particles(thinned)), planar_base(0.0), h), 0.5,
+              1e-12);
+  EXPECT_NEAR(basal_fill(with_lattice_volumes(make_particles(crowded)), planar_base(0.0), h), 1.25,
+              1e-12);
+}
+
+// Under three cells thick nothing counts: a thin layer's basal cell is its
+// whole depth, and the front and rear bins are left out of every slide.
+TEST(BasalFill, AThinLayerHasNoBasalLayerToMeasure) {
+  const double h = 2 * kSpacing;
+  const Particles thin =
+      with_lattice_volumes(make_particles(rectangle(planar_frame(0.0), 0.0, 12.0, 2.5 * h)));
+  EXPECT_TRUE(std::isnan(basal_fill(thin, planar_base(0.0), h)));
+  const Particles narrow =
+      with_lattice_volumes(make_particles(rectangle(planar_frame(0.0), 0.0, 2.0 * h, 5.0)));
+  EXPECT_TRUE(std::isnan(basal_fill(narrow, planar_base(0.0), h)));
+  EXPECT_TRUE(std::isnan(basal_fill(Particles{}, planar_base(0.0), h)));
 }

@@ -19,6 +19,7 @@
 #include "runout/output/checkpoint.hpp"
 #include "runout/dam/dam.hpp"
 #include "runout/output/history.hpp"
+#include "runout/measure/basal_fill.hpp"
 #include "runout/measure/morphology.hpp"
 #include "runout/run/run.hpp"
 #include "runout/run/run_control.hpp"
@@ -421,7 +422,8 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
     const Particles& P = particles();
     const SlideMorphology shape = measure_slide(P, base, spacing);
     history.append(mpm_history_row(P, shape, runout_distance(shape, initial_toe), sim.time(),
-                                   sim.steps(), sim.last_dt(), sim.basal_shear_force()));
+                                   sim.steps(), sim.last_dt(), sim.basal_shear_force(),
+                                   basal_fill(P, base, scene.grid.cell_size)));
     return rest.at_rest(sim.time(), shape.toe_velocity,
                         std::hypot(shape.centroid_vx, shape.centroid_vy));
   };

@@ -3,6 +3,7 @@
 // goes, so a killed run keeps every row it computed. Columns in
 // docs/output.md; the morphology ones are defined in docs/morphology.md.
 // Every method (MPM, the depth-averaged model) writes the same columns.
+#include <cmath>
 #include <string>
 #include <string_view>
 
@@ -20,13 +21,15 @@ struct HistoryRow {
   double centroid_x = 0, centroid_y = 0, centroid_s = 0, centroid_velocity = 0;
   double max_speed = 0, kinetic_energy = 0, basal_shear_force = 0, outside_mass = 0;
   double momentum_x = 0, momentum_y = 0;
+  double basal_fill = NAN;  // basal_fill.hpp; NaN for the depth-averaged model
 };
 
 // The row of an MPM run (CPU or CUDA) from its particles on the host and
-// their morphology; runout: toe displacement along the base since t = 0.
+// their morphology; runout: toe displacement along the base since t = 0;
+// basal_fill: basal_fill.hpp.
 HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& shape,
                            double runout, double time, long step, double dt,
-                           double basal_shear_force);
+                           double basal_shear_force, double basal_fill);
 
 // history.csv's header and first `rows` rows (a resumed run's rows up to
 // its checkpoint), without whatever a killed run wrote after them, a torn
