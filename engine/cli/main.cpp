@@ -9,6 +9,7 @@
 #include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -199,6 +200,16 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
             << byte_text(memory.node_bytes) << " per grid node), "
             << (available ? byte_text(*available) : std::string("unknown")) << " available\n";
   if (s.method == Method::Dam) return cli::kOk;
+  // A softening clay's basal layer crowds with fewer than 4 x 4 particles
+  // per cell, and its slide stops short (docs/validation.md, case 4).
+  double sensitivity = 1.0;
+  for (const MaterialSpec& m : s.materials) sensitivity = std::max(sensitivity, m.sensitivity);
+  if (sensitivity > 1.0 && s.grid.ppc < 4) {
+    std::cout << "# particles/cell:   " << s.grid.ppc << " x " << s.grid.ppc
+              << ": a softening clay (St = " << sensitivity
+              << ") crowds its basal layer with fewer than 4 x 4 and stops short "
+                 "(docs/validation.md: case 4 converges with 4 x 4 or more)\n";
+  }
   // Measured on the scene itself, so "on this machine" and at its size.
   try {
     const double per_step = seconds_per_step(sim, kWallEstimateSeconds);
