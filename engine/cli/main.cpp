@@ -9,7 +9,6 @@
 #include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +39,7 @@
 #include "runout/run/run_control.hpp"
 #include "runout/output/run_summary_file.hpp"
 #include "runout/scene/scene_parser.hpp"
+#include "runout/study/study.hpp"
 #include "runout/mpm/seeding.hpp"
 #include "runout/mpm/simulation.hpp"
 #include "runout/output/vtu_writer.hpp"
@@ -202,8 +202,7 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
   if (s.method == Method::Dam) return cli::kOk;
   // A softening clay's basal layer crowds with fewer than 4 x 4 particles
   // per cell, and its slide stops short (docs/validation.md, case 4).
-  double sensitivity = 1.0;
-  for (const MaterialSpec& m : s.materials) sensitivity = std::max(sensitivity, m.sensitivity);
+  const double sensitivity = study::slide_size(s).sensitivity;  // its bodies' largest St
   if (sensitivity > 1.0 && s.grid.ppc < 4) {
     std::cout << "# particles/cell:   " << s.grid.ppc << " x " << s.grid.ppc
               << ": a softening clay (St = " << sensitivity
