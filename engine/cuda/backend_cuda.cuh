@@ -250,7 +250,7 @@ class CudaBackend {
   cuda::Buffer<double> xi_start_, xi_local_, xi_average_;
   cuda::Buffer<int> keys_in_, keys_out_, values_in_, values_out_;
   cuda::Buffer<unsigned char> sort_temp_;
-  static constexpr int kGridArrays = 21;  // the double arrays of GridView
+  static constexpr int kGridArrays = 23;  // the double arrays of GridView
   cuda::Buffer<double> grid_arrays_[kGridArrays];
   int cells_ = 0;
   cuda::Buffer<double> cell_vol_, cell_sum_, cell_mean_;

@@ -189,11 +189,11 @@ GridView CudaBackend::fit_grid(const GridView& placed) {
   const std::size_t nodes = static_cast<std::size_t>(g.nx) * g.ny;
   for (auto& a : grid_arrays_) a.reserve(nodes);  // grow-only
   double** const ptrs[kGridArrays] = {&g.m,   &g.vol, &g.px,  &g.py,  &g.fx,    &g.fy,
-                                      &g.v0x, &g.v0y, &g.vx,  &g.vy,  &g.dvx,   &g.dvy,
-                                      &g.vmx, &g.vmy, &g.fbase, &g.gap, &g.stuck, &g.qx,
-                                      &g.qy,  &g.xvx, &g.xvy};
+                                      &g.band_su, &g.v0x, &g.v0y, &g.vx,  &g.vy,  &g.dvx,
+                                      &g.dvy, &g.vmx, &g.vmy, &g.fbase, &g.gap, &g.stuck,
+                                      &g.qx,  &g.qy,  &g.xvx, &g.xvy, &g.band_slip};
   for (int k = 0; k < kGridArrays; ++k) *ptrs[k] = grid_arrays_[k].get();
-  for (int k = 0; k < 6; ++k)  // m, vol, p, f: the accumulated ones
+  for (int k = 0; k < 7; ++k)  // m, vol, p, f, the band's strength: the accumulated ones
     RUNOUT_CUDA_CHECK(cudaMemsetAsync(grid_arrays_[k].get(), 0, nodes * sizeof(double)));
   // The gap, a minimum: +infinity where no particle is.
   fill_nodes(g, g.gap, std::numeric_limits<double>::infinity());

@@ -41,6 +41,7 @@ StepConfig make_step_config(const Scene& s, const std::vector<MaterialParams>& m
   }
   c.interface = s.base.interface;
   c.shear_strength = s.base.shear_strength;
+  c.clay_band = s.base.clay_band;
   c.friction = s.base.friction;
   c.xpic_order = s.solver.xpic_order;
   // As pic_time: xpic_cells crossings of a cell by the fastest P-wave; a

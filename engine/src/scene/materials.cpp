@@ -5,7 +5,7 @@ namespace runout {
 StrengthParams strength_params(const MaterialSpec& m) {
   if (m.model != MaterialModel::Tresca) return StrengthParams{};
   return {m.su0, 1.0 / m.sensitivity, m.xi95, m.eta, m.rate_exponent, m.reference_rate,
-          m.strength_form, m.band_thickness > 0.0};
+          m.strength_form, m.band_thickness > 0.0, m.band_thickness};
 }
 
 MaterialParams material_params(const MaterialSpec& m) {

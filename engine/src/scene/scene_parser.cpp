@@ -700,13 +700,27 @@ BaseSpec read_base(const TableReader& r, const GridSpec& grid) {
   if (base.kind == BaseKind::Polyline) keys.push_back("points");
   if (base.interface == InterfaceKind::Frictional) keys.push_back("shear_strength");
   if (base.interface == InterfaceKind::Coulomb) keys.push_back("friction");
+  if (base.interface != InterfaceKind::Coulomb) keys.push_back("clay_band");
   r.check_keys(keys);
+  if (auto v = r.find("clay_band")) base.clay_band = v->boolean();
   if (base.kind == BaseKind::Polyline) base.points = read_base_line(r.need("points"), grid);
   if (base.interface == InterfaceKind::Frictional)
     base.shear_strength = r.need("shear_strength").number(above(0.0));
   if (base.interface == InterfaceKind::Coulomb)
     base.friction = r.need("friction").number(above(0.0));
   return base;
+}
+
+// The basal band softens over the slip across it divided by its
+// thickness, so every softening clay needs one.
+void check_clay_band(const TableReader& base_table, const Scene& scene) {
+  if (!scene.base.clay_band) return;
+  for (const MaterialSpec& m : scene.materials)
+    if (m.model == MaterialModel::Tresca && m.sensitivity > 1.0 && !(m.band_thickness > 0.0))
+      base_table.need("clay_band")
+          .fail("softens the basal band over the slip across it divided by band_thickness, "
+                "which material \"" + m.name + "\" (sensitivity " +
+                format_number(m.sensitivity) + ") does not set");
 }
 
 // The base is the bottom of the slide: a bottom boundary condition as
@@ -813,6 +827,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   scene.materials = read_materials(root);
   scene.bodies = read_bodies(root, scene.materials, scene.grid);
   check_periodic(boundary, scene);
+  if (auto base = root.find("base")) check_clay_band(base->table(), scene);
   scene.dam = read_dam(root.optional_table("dam"), scene);
   scene.output = read_output(root.optional_table("output"));
   scene.overrides = read_run(root.optional_table("run"));

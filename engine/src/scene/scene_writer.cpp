@@ -110,6 +110,7 @@ void write_base(std::ostream& out, const BaseSpec& base) {
     out << "shear_strength = " << number(base.shear_strength) << "\n";
   if (base.interface == InterfaceKind::Coulomb)
     out << "friction = " << number(base.friction) << "\n";
+  if (base.clay_band) out << "clay_band = true\n";
   out << "\n";
 }
 

@@ -108,9 +108,11 @@ struct G2pMomentum {
   ParticleView P;
   GridView g;
   StepConfig c;
+  const MaterialParams* mats;
   template <class St, class Add, class Lower>
   RUNOUT_HD void operator()(int p, const St& st, Add add, Lower) const {
     g2p(P, p, st, g, c);
+    if (c.clay_band) band_softening(P, p, st, g, mats);
     p2g_momentum(P, p, st, g, c, add);
   }
   // APIC's g2p takes the cell gradient where its D is degenerate.
@@ -456,7 +458,7 @@ void Driver<B>::step(double dt) {
     backend_.fill_nodes(g, g.px, 0.0);
     backend_.fill_nodes(g, g.py, 0.0);
   }
-  backend_.scatter(g, c, stage::G2pMomentum{P, g, c});
+  backend_.scatter(g, c, stage::G2pMomentum{P, g, c, backend_.materials()});
   exchange(Exchange::AfterMomentum);
   backend_.for_each_node(g, stage::Remap{g, c, dt});
   exchange(Exchange::AfterRemap);

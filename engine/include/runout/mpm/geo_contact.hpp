@@ -76,6 +76,19 @@ RUNOUT_HD inline double closing_speed(const GridView& g, int n, double dt) {
 // direction (+s), m dv / dt, negative while it resists down-slope motion,
 // and whether the tangential velocity was removed whole (the node sticks:
 // always on a no-slip base).
+// A base node's share of the interface, 2 V_i / h. Under the clay's band
+// it is at most the base's length per node, h over the larger of the
+// normal's components (a straight base at angle a to the grid passes
+// h / cos a of itself per node column): a basal layer whose particles
+// crowd the node's support (V_i over h^2 / 2) otherwise widens the band
+// by as much, and the runout then moves with the particles per cell.
+RUNOUT_HD inline double interface_share(const StepConfig& c, double vol, double h, double nx,
+                                        double ny) {
+  const double share = 2.0 * vol / h;
+  if (!c.clay_band) return share;
+  return std::fmin(share, h / std::fmax(std::fabs(nx), std::fabs(ny)));
+}
+
 struct ContactResult {
   double force;
   bool stuck;
@@ -83,7 +96,7 @@ struct ContactResult {
 
 RUNOUT_HD inline ContactResult geo_contact(const StepConfig& c, double m, double vol, double h,
                                            double dt, double closing, double nx, double ny,
-                                           double& vx, double& vy) {
+                                           double& vx, double& vy, double band_su) {
   const double vn = vx * nx + vy * ny;
   const double dvn = vn < -closing ? -closing - vn : 0.0;
   vx += dvn * nx;
@@ -91,8 +104,11 @@ RUNOUT_HD inline ContactResult geo_contact(const StepConfig& c, double m, double
   const double tx = ny, ty = -nx;  // +s direction: the normal turned clockwise
   const double vt = vx * tx + vy * ty;
   double limit = std::fabs(vt);
-  if (c.interface == InterfaceKind::Frictional) {
-    limit = c.shear_strength * (2.0 * vol / h) * dt / m;
+  const double share = interface_share(c, vol, h, nx, ny);
+  if (c.interface == InterfaceKind::NoSlip) {
+    if (c.clay_band) limit = band_su * share * dt / m;
+  } else if (c.interface == InterfaceKind::Frictional) {
+    limit = std::fmin(c.shear_strength, band_su) * share * dt / m;
   } else if (c.interface == InterfaceKind::Coulomb) {
     limit = c.friction * dvn;
   }

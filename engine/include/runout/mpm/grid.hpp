@@ -30,6 +30,9 @@ struct GridView {
   double *stuck;            // 1 where Geo-contact held the node's material still, else 0
   double *qx, *qy;          // XPIC: the current term (B S+ S)^(k-1) v0
   double *xvx, *xvy;        // XPIC: the filtered start velocity V*
+  // The clay's band along the base (StepConfig::clay_band): sum N V su of
+  // the particles near the base, and a base node's slip in the step.
+  double *band_su, *band_slip;
 
   RUNOUT_HD int index(int i, int j) const { return j * nx + i; }
   RUNOUT_HD int size() const { return nx * ny; }
@@ -57,10 +60,10 @@ inline void place_box(GridView& g, double xmin, double xmax, double ymin, double
 }
 
 // Empties node n for the next p2g: what p2g adds into (mass, volume,
-// momentum, force) and the base's force zero, the gap +infinity (no
+// momentum, force, the band's strength) and the base's force zero, the gap +infinity (no
 // particle).
 RUNOUT_HD inline void clear_node(const GridView& g, int n) {
-  g.m[n] = g.vol[n] = g.px[n] = g.py[n] = g.fx[n] = g.fy[n] = g.fbase[n] = 0.0;
+  g.m[n] = g.vol[n] = g.px[n] = g.py[n] = g.fx[n] = g.fy[n] = g.fbase[n] = g.band_su[n] = 0.0;
   g.gap[n] = INFINITY;
 }
 
@@ -78,7 +81,7 @@ class Grid {
   // Staggered in their pages (staggered_allocator.hpp): p2g adds rows of
   // m, px, py, fx and fy at the same nodes, one after another.
   StaggeredArray m_, vol_, px_, py_, fx_, fy_, v0x_, v0y_, vx_, vy_, dvx_, dvy_, vmx_, vmy_,
-      fbase_, gap_, stuck_, qx_, qy_, xvx_, xvy_;
+      fbase_, gap_, stuck_, qx_, qy_, xvx_, xvy_, band_su_, band_slip_;
 };
 
 }  // namespace runout

@@ -52,9 +52,15 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const St& st, const Grid
     add(g.fy, n0, -(vsxy * dNx + vsyy * dNy));
   });
   if (!near_base) return;
+  // The basal band's strength: the clay's current su; an elastic body has
+  // no band, and holds its node.
+  const double band_su = P.su[p] > 0.0 ? P.su[p] : INFINITY;
   for_each_node(g, st, [&](int n, double N, double, double, double, double) {
     add(g.vol, n, N * V);
-    if (N > 0.0) lower(g.gap, n, gap);
+    if (N > 0.0) {
+      lower(g.gap, n, gap);
+      if (c.clay_band) add(g.band_su, n, N * V * band_su);
+    }
   });
 }
 
@@ -86,7 +92,7 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
     g.v0x[n] = g.vx[n] = vx;
     g.v0y[n] = g.vy[n] = vy;
     g.dvx[n] = g.dvy[n] = 0.0;
-    g.fbase[n] = g.stuck[n] = 0.0;
+    g.fbase[n] = g.stuck[n] = g.band_slip[n] = 0.0;
     return;
   }
   double v0x = g.px[n] / m, v0y = g.py[n] / m;
@@ -104,10 +110,14 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
   double nx, ny;
   g.fbase[n] = 0.0;
   g.stuck[n] = 0.0;
+  g.band_slip[n] = 0.0;
   if (base_contact_normal(g, c, n, nx, ny)) {
-    const ContactResult r =
-        geo_contact(c, m, g.vol[n], g.h, dt, closing_speed(g, n, dt), nx, ny, vx, vy);
+    // The mean strength of the clay the node sees (p2g's N V su over N V).
+    const double band_su = c.clay_band && g.vol[n] > 0.0 ? g.band_su[n] / g.vol[n] : INFINITY;
+    const ContactResult r = geo_contact(c, m, g.vol[n], g.h, dt, closing_speed(g, n, dt), nx,
+                                        ny, vx, vy, band_su);
     g.fbase[n] = r.force;
+    if (!r.stuck && c.clay_band) g.band_slip[n] = std::fabs(vx * ny - vy * nx) * dt;
     if (r.stuck) {
       // The node's material is held still, and so is its start velocity:
       // that is a projection of particle velocities from up to a cell above
@@ -291,6 +301,31 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const St& st,
     add(g.px, n0, affine ? Nm * v.x(rx, ry) : Nm * v.vx);
     add(g.py, n0, affine ? Nm * v.y(rx, ry) : Nm * v.vy);
   });
+}
+
+// The clay's basal band (StepConfig::clay_band), after g2p: a particle
+// that slipping base nodes reach takes their mean slip in the step as the
+// displacement across its band, xi += delta / t_s (the crack band of
+// Bazant & Oh 1983, as the regularised softening scales a band's strain),
+// so the band's strength that p2g gathers at the nodes softens with the
+// slip after delta95 = xi95 t_s, whatever the cell and the particles.
+template <class St>
+RUNOUT_HD inline void band_softening(const ParticleView& P, int p, const St& st,
+                                     const GridView& g, const MaterialParams* mats) {
+  const double ts = mats[P.material[p]].strength.band_thickness;
+  if (!(ts > 0.0)) return;
+  double slip = 0.0, weight = 0.0;
+  for_each_row(g, st, [&](int n0, double wy, double, double) {
+    for (int a = 0; a < kStencilNodes; ++a) {
+      const double s = g.band_slip[n0 + a];
+      if (s > 0.0) {
+        const double N = st.w.wx[a] * wy;
+        slip += N * s;
+        weight += N;
+      }
+    }
+  });
+  if (weight > 0.0) P.xi[p] += slip / (weight * ts);
 }
 
 // Stage 5. The remapped velocity v_i strains the particles (stage 6); the

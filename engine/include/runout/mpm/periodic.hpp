@@ -63,13 +63,13 @@ enum class Exchange { AfterP2g, AfterGridUpdate, AfterMomentum, AfterXpicTerm, A
 RUNOUT_HD inline void exchange_periodic(const GridView& g, int j, Exchange after) {
   switch (after) {
     case Exchange::AfterP2g: {
-      double* const sums[] = {g.m, g.vol, g.px, g.py, g.fx, g.fy};
+      double* const sums[] = {g.m, g.vol, g.px, g.py, g.fx, g.fy, g.band_su};
       for (double* a : sums) fold_periodic(g, j, a);
       fold_periodic(g, j, g.gap, true);
       break;
     }
     case Exchange::AfterGridUpdate: {
-      double* const results[] = {g.v0x, g.v0y, g.vx, g.vy, g.dvx, g.dvy, g.stuck};
+      double* const results[] = {g.v0x, g.v0y, g.vx, g.vy, g.dvx, g.dvy, g.stuck, g.band_slip};
       for (double* a : results) copy_periodic(g, j, a);
       const PeriodicColumns k = periodic_columns(g);
       for (int q = 0; q < 3; ++q) g.fbase[g.index(k.ghost[q], j)] = 0.0;

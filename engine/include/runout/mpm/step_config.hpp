@@ -40,6 +40,7 @@ struct StepConfig {
   InterfaceKind interface = InterfaceKind::NoSlip;
   double shear_strength = 0;     // tau, Frictional
   double friction = 0;           // mu, Coulomb
+  bool clay_band = false;        // BaseSpec::clay_band
   int xpic_order = 5;            // m of XPIC(m)
   double xpic_period = 0;        // [s] FLIP with an XPIC step every period
   bool xpic_now = false;         // this step is an XPIC one

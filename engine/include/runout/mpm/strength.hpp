@@ -38,6 +38,7 @@ struct StrengthParams {
   // the step before (the particle's gamma_dot as the driver leaves it),
   // not the numerical band's strain rate, which grows as the cell shrinks.
   bool regularised = false;
+  double band_thickness = 0;  // t_s [m]; 0: none (MaterialSpec::band_thickness)
 };
 
 // exp(-3) = 0.0498: at xi = xi95, 95 % of the drop 1 - d_rem has happened.

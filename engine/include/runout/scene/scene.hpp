@@ -109,6 +109,11 @@ struct BaseSpec {
   InterfaceKind interface = InterfaceKind::NoSlip;
   double shear_strength = 0.0;     // tau [Pa], Frictional
   double friction = 0.0;           // mu, Coulomb
+  // The clay fails along the base in a band of its band_thickness t_s,
+  // thinner than any cell: the base's nodes slip at the strength of the
+  // clay there, which softens with the slip over t_s (docs/strength.md,
+  // "The basal band"). No-slip and frictional interfaces only.
+  bool clay_band = false;
 };
 
 // The depth-integrated longitudinal stress of the depth-averaged model
