@@ -546,6 +546,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.base.interface, b.base.interface);
   EXPECT_EQ(a.base.shear_strength, b.base.shear_strength);
   EXPECT_EQ(a.base.friction, b.base.friction);
+  EXPECT_EQ(a.base.clay_band, b.base.clay_band);
   EXPECT_EQ(a.method, b.method);
   EXPECT_EQ(a.dam.shear_rate, b.dam.shear_rate);
   EXPECT_EQ(a.dam.elements, b.dam.elements);
@@ -599,9 +600,10 @@ TEST(SceneWriter, PlanarBaseAndTrescaDefaultsRoundTrip) {
                                 "\n[[body]]\nname = \"block\"\nmaterial = \"clay\"\n"
                                 "type = \"rectangle\"\nmin = [1.0, 0.0]\nmax = [3.0, 2.0]\n"
                                 "[base]\nkind = \"planar\"\ninterface = \"frictional\"\n"
-                                "shear_strength = 1e3"),
+                                "shear_strength = 1e3\nclay_band = true"),
       "planar.toml");
   ASSERT_EQ(s.base.kind, BaseKind::Planar);
+  ASSERT_TRUE(s.base.clay_band);
   expect_same_scene(parse_scene(to_toml(s), "resolved.toml"), s);
 }
 
