@@ -89,6 +89,13 @@ RUNOUT_HD inline double interface_share(const StepConfig& c, double vol, double 
   return std::fmin(share, h / std::fmax(std::fabs(nx), std::fabs(ny)));
 }
 
+// Whether the clay's band, of strength band_su, is what slips at a base
+// node under StepConfig::clay_band, rather than the interface.
+RUNOUT_HD inline bool clay_band_slips(const StepConfig& c, double band_su) {
+  return c.interface == InterfaceKind::NoSlip ||
+         (c.interface == InterfaceKind::Frictional && band_su < c.shear_strength);
+}
+
 struct ContactResult {
   double force;
   bool stuck;

@@ -117,7 +117,11 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
     const ContactResult r = geo_contact(c, m, g.vol[n], g.h, dt, closing_speed(g, n, dt), nx,
                                         ny, vx, vy, band_su);
     g.fbase[n] = r.force;
-    if (!r.stuck && c.clay_band) g.band_slip[n] = std::fabs(vx * ny - vy * nx) * dt;
+    // The slip is the band's where the band is weaker than the interface;
+    // a frictional interface weaker than the clay slips on the clay
+    // without shearing it.
+    if (!r.stuck && c.clay_band && clay_band_slips(c, band_su))
+      g.band_slip[n] = std::fabs(vx * ny - vy * nx) * dt;
     if (r.stuck) {
       // The node's material is held still, and so is its start velocity:
       // that is a projection of particle velocities from up to a cell above
