@@ -58,4 +58,15 @@ inline void set_geostatic(Particles& P, double rho, double g_normal, double top,
   }
 }
 
+// A sensitive clay: Tresca with the multiplicative softening to su0 / St
+// by xi95, regularised over a band t_s thick (t_s = 0: the local law).
+inline void make_softening_clay(MaterialSpec& m, double su0, double sensitivity, double xi95,
+                                double band_thickness) {
+  m.model = MaterialModel::Tresca;
+  m.su0 = su0;
+  m.sensitivity = sensitivity;
+  m.xi95 = xi95;
+  m.band_thickness = band_thickness;
+}
+
 }  // namespace runout::fixtures

@@ -37,12 +37,7 @@ Simulation layer(double h, int ppc, bool clay_band) {
   s.base.kind = BaseKind::Planar;
   s.base.interface = InterfaceKind::NoSlip;
   s.base.clay_band = clay_band;
-  MaterialSpec& m = s.materials[0];
-  m.model = MaterialModel::Tresca;
-  m.su0 = kSu0;
-  m.sensitivity = kSt;
-  m.xi95 = kXi95;
-  m.band_thickness = kTs;
+  fixtures::make_softening_clay(s.materials[0], kSu0, kSt, kXi95, kTs);
   Simulation sim(s);
   fixtures::set_geostatic(sim.particles(), kRho, kG * std::cos(kTheta), kH, 1.0);
   return sim;

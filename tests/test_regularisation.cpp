@@ -200,11 +200,7 @@ ShearCurve simple_shear(double h, int ppc, double t_s, double l) {
   s.materials.push_back(s.materials[0]);  // the plate's, elastic
   s.materials[1].name = "plate";
   MaterialSpec& clay = s.materials[0];
-  clay.model = MaterialModel::Tresca;
-  clay.su0 = kSu0;
-  clay.sensitivity = kSt;
-  clay.xi95 = kXi95;
-  clay.band_thickness = t_s;
+  fixtures::make_softening_clay(clay, kSu0, kSt, kXi95, t_s);
   clay.nonlocal_length = t_s > 0.0 ? l : 0.0;
   BodySpec top = s.bodies[0];
   top.name = "plate";
