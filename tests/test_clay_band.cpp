@@ -6,17 +6,20 @@
 //   dv/dt = g sin(theta) - su0 S(delta / t_s) / (rho H), with delta the
 //   slip; its velocity follows that balance within 1 % on two cells and
 //   two particle counts, so the band remoulds after delta95 = xi95 t_s
-//   whatever the mesh;
+//   whatever the mesh; with a rate effect, su0 (S + eta (v / (t_s
+//   gamma_ref))^n) in the balance: the band stiffens at the slip's rate;
 // - without clay_band the same layer shears across its basal cell instead,
 //   and its velocity moves with the cell (asserted).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "runout/measure/diagnostics.hpp"
 #include "runout/mpm/simulation.hpp"
 #include "runout/mpm/strength.hpp"
+#include "runout/scene/materials.hpp"
 #include "scene_builders.hpp"
 
 using namespace runout;
@@ -26,10 +29,25 @@ namespace {
 constexpr double kTheta = 10.0 * M_PI / 180.0, kG = 9.81, kRho = 600.0, kH = 2.0;
 constexpr double kSu0 = 1500.0, kSt = 5.0, kXi95 = 5.0, kTs = 0.05;
 
+// The clay, with a rate effect eta (the additive form, n = 0.5 at 1 /s, as
+// the escarpment's) or none.
+MaterialSpec clay(double eta) {
+  MaterialSpec m;
+  m.density = kRho;
+  m.youngs_modulus = 5e6;
+  m.poisson_ratio = 0.3;
+  fixtures::make_softening_clay(m, kSu0, kSt, kXi95, kTs);
+  m.eta = eta;
+  m.rate_exponent = 0.5;
+  m.reference_rate = 1.0;
+  m.strength_form = StrengthForm::Additive;
+  return m;
+}
+
 // A layer 1 m long, repeating along x, on a no-slip planar base. It starts
 // with an isotropic stress (K0 = 1: no deviator for the Tresca clay to
 // yield on) in equilibrium normal to the base.
-Simulation layer(double h, int ppc, bool clay_band) {
+Simulation layer(double h, int ppc, bool clay_band, double eta = 0.0) {
   Scene s = fixtures::block_scene({0.0, 0.0}, {1.0, kH}, {0.0, 0.0}, {1.0, 4.0}, h, ppc, kRho,
                                   5e6, 0.3);
   s.boundary.left = s.boundary.right = BoundaryKind::Periodic;
@@ -37,7 +55,9 @@ Simulation layer(double h, int ppc, bool clay_band) {
   s.base.kind = BaseKind::Planar;
   s.base.interface = InterfaceKind::NoSlip;
   s.base.clay_band = clay_band;
-  fixtures::make_softening_clay(s.materials[0], kSu0, kSt, kXi95, kTs);
+  const std::string name = s.materials[0].name;
+  s.materials[0] = clay(eta);
+  s.materials[0].name = name;
   Simulation sim(s);
   fixtures::set_geostatic(sim.particles(), kRho, kG * std::cos(kTheta), kH, 1.0);
   return sim;
@@ -55,23 +75,21 @@ double mean_displacement_x(const Simulation& sim) {
   return sum / particle_totals(P).mass;
 }
 
-// The rigid layer on its band from slip x and velocity v over a time t,
-// integrated by RK4 in steps of 1 ms; returns the velocity at its end.
-double rigid_layer_velocity(double x, double v, double t) {
-  StrengthParams p;
-  p.su0 = kSu0;
-  p.d_rem = 1.0 / kSt;
-  p.xi95 = kXi95;
-  const auto accel = [&](double slip) {
-    return kG * std::sin(kTheta) - kSu0 * softening(p, slip / kTs) / (kRho * kH);
+// The rigid layer on its band from slip x and velocity v over a time t:
+// dv/dt = g sin(theta) - su(x / t_s, v / t_s) / (rho H), integrated by RK4
+// in steps of 1 ms; returns the velocity at its end.
+double rigid_layer_velocity(double x, double v, double t, double eta = 0.0) {
+  const StrengthParams p = strength_params(clay(eta));
+  const auto accel = [&](double slip, double speed) {
+    return kG * std::sin(kTheta) - strength(p, slip / kTs, speed / kTs) / (kRho * kH);
   };
   const int steps = static_cast<int>(std::lround(t / 1e-3));
   const double dt = t / steps;
   for (int k = 0; k < steps; ++k) {
-    const double k1x = v, k1v = accel(x);
-    const double k2x = v + 0.5 * dt * k1v, k2v = accel(x + 0.5 * dt * k1x);
-    const double k3x = v + 0.5 * dt * k2v, k3v = accel(x + 0.5 * dt * k2x);
-    const double k4x = v + dt * k3v, k4v = accel(x + dt * k3x);
+    const double k1x = v, k1v = accel(x, k1x);
+    const double k2x = v + 0.5 * dt * k1v, k2v = accel(x + 0.5 * dt * k1x, k2x);
+    const double k3x = v + 0.5 * dt * k2v, k3v = accel(x + 0.5 * dt * k2x, k3x);
+    const double k4x = v + dt * k3v, k4v = accel(x + dt * k3x, k4x);
     x += dt * (k1x + 2 * k2x + 2 * k3x + k4x) / 6;
     v += dt * (k1v + 2 * k2v + 2 * k3v + k4v) / 6;
   }
@@ -122,4 +140,25 @@ TEST(ClayBand, WithoutItTheLayerMovesWithTheCell) {
   std::printf("no-slip, regularised: v(1.5 s) %.4f m/s at h = 0.25 m, %.4f at 0.125 m\n", v[0],
               v[1]);
   EXPECT_GT(v[1], 1.03 * v[0]);
+}
+
+// The escarpment's rate effect (eta = 0.0167, n = 0.5) tripled, so that
+// at the band's rate v / t_s of some 30 /s it adds a quarter of su0: the
+// band's strength follows the slip's rate, not its particles' own shear.
+TEST(ClayBand, RateDependentLayerSlidesAsItsBandStiffens) {
+  const double eta = 0.05, t0 = 0.2, t1 = 1.5;
+  for (const int ppc : {2, 4}) {
+    Simulation sim = layer(0.25, ppc, true, eta);
+    sim.advance_to(t0);
+    const double x = mean_displacement_x(sim), v0 = mean_velocity_x(sim);
+    const double expected = rigid_layer_velocity(x, v0, t1 - t0, eta);
+    const double rate_free = rigid_layer_velocity(x, v0, t1 - t0);
+    sim.advance_to(t1);
+    const double v = mean_velocity_x(sim);
+    std::printf("eta %.2f, %d x %d: v(%.1f s) %.4f m/s, the rigid layer on its band %.4f "
+                "(without the rate effect %.4f)\n",
+                eta, ppc, ppc, t1, v, expected, rate_free);
+    ASSERT_LT(expected, 0.9 * rate_free);
+    EXPECT_NEAR(v, expected, 0.01 * expected) << "ppc " << ppc;
+  }
 }

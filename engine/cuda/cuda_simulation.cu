@@ -151,7 +151,7 @@ CudaBackend::CudaBackend(Particles P, const std::vector<MaterialParams>& materia
   for (auto& s : sets_) s.reserve(cap);
   for (auto* b : {&dx_, &dy_, &lxx_, &lxy_, &lyx_, &lyy_, &speed_}) b->reserve(cap);
   if (std::any_of(nonlocal_lengths.begin(), nonlocal_lengths.end(), [](double l) { return l > 0; }))
-    for (auto* b : {&xi_start_, &xi_local_, &xi_average_}) b->reserve(cap);
+    for (auto* b : {&xi_start_, &xi_local_, &xi_average_, &band_rate_}) b->reserve(cap);
   for (auto* b : {&keys_in_, &keys_out_, &values_in_, &values_out_}) b->reserve(cap);
   partials_.reserve(cuda::kReduceBlocks * 64);
   static_assert(sizeof(ParticleBox) <= 64 && sizeof(SpeedMax) <= 64 && sizeof(cuda::Sum) <= 64,

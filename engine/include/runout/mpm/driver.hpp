@@ -109,10 +109,12 @@ struct G2pMomentum {
   GridView g;
   StepConfig c;
   const MaterialParams* mats;
+  double dt;
+  double* band_rate;
   template <class St, class Add, class Lower>
   RUNOUT_HD void operator()(int p, const St& st, Add add, Lower) const {
     g2p(P, p, st, g, c);
-    if (c.clay_band) band_softening(P, p, st, g, mats);
+    if (c.clay_band) band_softening(P, p, st, g, mats, dt, band_rate);
     p2g_momentum(P, p, st, g, c, add);
   }
   // APIC's g2p takes the cell gradient where its D is degenerate.
@@ -215,10 +217,11 @@ struct SetNonlocalXi {
   const double* lengths;  // per material
   const MaterialParams* mats;
   double dt;
+  const double* band_rate;  // the clay's basal band's (band_softening), or null
   RUNOUT_HD void operator()(int p) const {
     if (lengths[P.material[p]] <= 0.0) return;
     P.xi[p] = start[p] + average[p];
-    P.gamma_dot[p] = average[p] / dt;
+    P.gamma_dot[p] = band_rate ? std::fmax(average[p] / dt, band_rate[p]) : average[p] / dt;
     P.su[p] = strength(mats[P.material[p]].strength, P.xi[p], P.gamma_dot[p]);
   }
 };
@@ -266,7 +269,7 @@ class Driver {
   void fit_grid(double dt);
   void exchange(Exchange after);
   void xpic_start_velocity(const StepConfig& c);
-  void regularise_softening(double dt);
+  void regularise_softening(double dt, const double* band_rate);
   [[noreturn]] void fail(double dt);
 
   Base base_;
@@ -427,7 +430,7 @@ void Driver<B>::xpic_start_velocity(const StepConfig& c) {
 // Galavi & Schweiger 2010: local return, nonlocal internal variable). The
 // increments are measured at the particles' end-of-step positions.
 template <Backend B>
-void Driver<B>::regularise_softening(double dt) {
+void Driver<B>::regularise_softening(double dt, const double* band_rate) {
   const ParticleView P = backend_.particles();
   double* start = backend_.xi_start();
   double* local = backend_.xi_local();
@@ -435,7 +438,7 @@ void Driver<B>::regularise_softening(double dt) {
   backend_.for_each_particle(stage::XiIncrement{P, start, local});
   backend_.nonlocal_average(nonlocal_, local, average);
   backend_.for_each_particle(stage::SetNonlocalXi{P, start, average, backend_.nonlocal_lengths(),
-                                                  backend_.materials(), dt});
+                                                  backend_.materials(), dt, band_rate});
 }
 
 template <Backend B>
@@ -446,6 +449,8 @@ void Driver<B>::step(double dt) {
   const StepConfig c = backend_.kernel_config(config_);
   const GridView g = grid_;
   const ParticleView P = backend_.particles();
+  const bool nonlocal = nonlocal_.active();
+  double* const band_rate = c.clay_band && nonlocal ? backend_.band_rate() : nullptr;
 
   backend_.scatter(g, c, stage::P2g{P, g, c});
   exchange(Exchange::AfterP2g);
@@ -458,12 +463,11 @@ void Driver<B>::step(double dt) {
     backend_.fill_nodes(g, g.px, 0.0);
     backend_.fill_nodes(g, g.py, 0.0);
   }
-  backend_.scatter(g, c, stage::G2pMomentum{P, g, c, backend_.materials()});
+  backend_.scatter(g, c, stage::G2pMomentum{P, g, c, backend_.materials(), dt, band_rate});
   exchange(Exchange::AfterMomentum);
   backend_.for_each_node(g, stage::Remap{g, c, dt});
   exchange(Exchange::AfterRemap);
 
-  const bool nonlocal = nonlocal_.active();
   // Stages 6 and 7 need of other particles only those of the particle's own
   // cell (the volumetric smoothing's means), so they run group by group of
   // whole cells, and what they pass between them (L, the displacements)
@@ -490,7 +494,7 @@ void Driver<B>::step(double dt) {
   });
   if (speed.bad > 0) fail(dt);
   // After the mean stress, which it neither reads nor changes.
-  if (nonlocal) regularise_softening(dt);
+  if (nonlocal) regularise_softening(dt, band_rate);
   max_signal_speed_ = speed.max;
   basal_shear_force_ = basal;
   time_ += dt;

@@ -308,28 +308,41 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const St& st,
 }
 
 // The clay's basal band (StepConfig::clay_band), after g2p: a particle
-// that slipping base nodes reach takes their mean slip in the step as the
-// displacement across its band, xi += delta / t_s (the crack band of
-// Bazant & Oh 1983, as the regularised softening scales a band's strain),
-// so the band's strength that p2g gathers at the nodes softens with the
-// slip after delta95 = xi95 t_s, whatever the cell and the particles.
+// that slipping base nodes reach takes their mean slip delta in the step
+// as the displacement across its band, xi += delta / t_s (the crack band
+// of Bazant & Oh 1983, as the regularised softening scales a band's
+// strain), and delta / (t_s dt) as the band's rate, which its strength
+// holds (StrengthParams::regularised) where it exceeds its own: so the
+// band's strength that p2g gathers at the nodes softens after
+// delta95 = xi95 t_s and stiffens with the slip's rate, whatever the cell
+// and the particles. rate[p] keeps the band's rate (0 off the band) for
+// the regularised rate at the step's end; null where no clay has a t_s.
 template <class St>
 RUNOUT_HD inline void band_softening(const ParticleView& P, int p, const St& st,
-                                     const GridView& g, const MaterialParams* mats) {
-  const double ts = mats[P.material[p]].strength.band_thickness;
-  if (!(ts > 0.0)) return;
+                                     const GridView& g, const MaterialParams* mats, double dt,
+                                     double* rate) {
+  const StrengthParams& s = mats[P.material[p]].strength;
   double slip = 0.0, weight = 0.0;
-  for_each_row(g, st, [&](int n0, double wy, double, double) {
-    for (int a = 0; a < kStencilNodes; ++a) {
-      const double s = g.band_slip[n0 + a];
-      if (s > 0.0) {
-        const double N = st.w.wx[a] * wy;
-        slip += N * s;
-        weight += N;
+  if (s.band_thickness > 0.0) {
+    for_each_row(g, st, [&](int n0, double wy, double, double) {
+      for (int a = 0; a < kStencilNodes; ++a) {
+        const double d = g.band_slip[n0 + a];
+        if (d > 0.0) {
+          const double N = st.w.wx[a] * wy;
+          slip += N * d;
+          weight += N;
+        }
       }
-    }
-  });
-  if (weight > 0.0) P.xi[p] += slip / (weight * ts);
+    });
+  }
+  if (!(weight > 0.0)) {
+    if (rate) rate[p] = 0.0;
+    return;
+  }
+  const double band = slip / (weight * s.band_thickness);  // the band's shear in the step
+  P.xi[p] += band;
+  P.gamma_dot[p] = std::fmax(P.gamma_dot[p], band / dt);
+  if (rate) rate[p] = band / dt;
 }
 
 // Stage 5. The remapped velocity v_i strains the particles (stage 6); the
