@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "cli_runner.hpp"
+#include "run_folder.hpp"
 
 namespace fs = std::filesystem;
 using namespace runout::cli_runner;
@@ -129,6 +130,14 @@ TEST_F(Cli, CheckSaysASofteningClayNeedsFourByFourParticles) {
   const Result insensitive = run_cli("check " + write("small.toml", kSmallScene) + " --ppc 2");
   ASSERT_EQ(insensitive.code, 0) << insensitive.output;
   EXPECT_EQ(insensitive.output.find("# particles/cell:"), std::string::npos);
+  // The clay's band at the base: 2 x 2 particles suffice.
+  std::string banded = runout::run_folder::read_file(case4);
+  const std::string tau = "shear_strength = 1000.0";
+  ASSERT_NE(banded.find(tau), std::string::npos);
+  banded.replace(banded.find(tau), tau.size(), tau + "\nclay_band = true");
+  const Result band = run_cli("check " + write("band.toml", banded) + " --cell 1.0 --ppc 2");
+  ASSERT_EQ(band.code, 0) << band.output;
+  EXPECT_EQ(band.output.find("# particles/cell:"), std::string::npos) << band.output;
 }
 
 // Without --threads a run takes one thread per 10 000 particles (at most

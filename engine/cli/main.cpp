@@ -200,14 +200,18 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
             << byte_text(memory.node_bytes) << " per grid node), "
             << (available ? byte_text(*available) : std::string("unknown")) << " available\n";
   if (s.method == Method::Dam) return cli::kOk;
-  // A softening clay's basal layer crowds with fewer than 4 x 4 particles
-  // per cell, and its slide stops short (docs/validation.md, case 4).
+  // On a base that holds its nodes, a softening clay's basal layer crowds
+  // with fewer than 4 x 4 particles per cell, and its slide stops short
+  // (docs/validation.md, case 4); the clay's band at the base does not
+  // (docs/strength.md, "The basal band").
   const double sensitivity = study::slide_size(s).sensitivity;  // its bodies' largest St
-  if (sensitivity > 1.0 && s.grid.ppc < 4) {
+  if (sensitivity > 1.0 && s.grid.ppc < 4 && !s.base.clay_band) {
     std::cout << "# particles/cell:   " << s.grid.ppc << " x " << s.grid.ppc
               << ": a softening clay (St = " << sensitivity
               << ") crowds its basal layer with fewer than 4 x 4 and stops short "
-                 "(docs/validation.md: case 4 converges with 4 x 4 or more)\n";
+                 "(docs/validation.md: case 4 converges with 4 x 4 or more); "
+                 "[base] clay_band = true puts its band at the base instead "
+                 "(docs/strength.md, \"The basal band\")\n";
   }
   // Measured on the scene itself, so "on this machine" and at its size.
   try {
