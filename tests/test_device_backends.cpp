@@ -203,17 +203,28 @@ TYPED_TEST(DeviceBackend, FrictionalBlockAcceleratesAtTheRigidBlockRate) {
   EXPECT_NEAR(sim.basal_shear_force(), -tau * kL, 0.01 * tau * kL);
 }
 
-// A periodic layer (boundary.left = right = "periodic") on a 10-degree
-// incline: the seam's exchanges run as device loops over node rows.
-TYPED_TEST(DeviceBackend, AgreesWithTheCpuAcrossAPeriodicSeam) {
-  Scene s = fixtures::block_scene({0.0, 0.0}, {4.0, 1.0}, {0.0, 0.0}, {4.0, 3.0}, 0.25, 2, 1000.0,
-                                  2e6, 0.3);
+namespace {
+
+// A layer 4 m long repeating along x (boundary.left = right =
+// "periodic") on a planar base inclined at 10 degrees, cells of 0.25 m.
+Scene periodic_incline(double thickness, double density, double youngs,
+                       InterfaceKind interface) {
+  Scene s = fixtures::block_scene({0.0, 0.0}, {4.0, thickness}, {0.0, 0.0},
+                                  {4.0, thickness + 2.0}, 0.25, 2, density, youngs, 0.3);
   s.boundary.left = s.boundary.right = BoundaryKind::Periodic;
+  s.boundary.bottom = BoundaryKind::Free;
   s.gravity.vector = {9.81 * std::sin(0.1745), -9.81 * std::cos(0.1745)};
   s.base.kind = BaseKind::Planar;
-  s.base.interface = InterfaceKind::Frictional;
+  s.base.interface = interface;
+  return s;
+}
+
+}  // namespace
+
+// The seam's exchanges run as device loops over node rows.
+TYPED_TEST(DeviceBackend, AgreesWithTheCpuAcrossAPeriodicSeam) {
+  Scene s = periodic_incline(1.0, 1000.0, 2e6, InterfaceKind::Frictional);
   s.base.shear_strength = 500.0;
-  s.boundary.bottom = BoundaryKind::Free;
   const Difference d = largest_difference_from_the_cpu<TypeParam>(s, 300);
   std::printf("largest CPU-device difference, periodic, after 300 steps: %.3g\n", d.largest);
   EXPECT_LE(d.largest, 1e-6);
@@ -223,14 +234,8 @@ TYPED_TEST(DeviceBackend, AgreesWithTheCpuAcrossAPeriodicSeam) {
 // softening clay steep enough to slide: the band's strength gathered at
 // the nodes, their slip, and the softening it spreads back.
 TYPED_TEST(DeviceBackend, AgreesWithTheCpuOnTheClayBand) {
-  Scene s = fixtures::block_scene({0.0, 0.0}, {4.0, 2.0}, {0.0, 0.0}, {4.0, 4.0}, 0.25, 2, 600.0,
-                                  5e6, 0.3);
-  s.boundary.left = s.boundary.right = BoundaryKind::Periodic;
-  s.gravity.vector = {9.81 * std::sin(0.1745), -9.81 * std::cos(0.1745)};
-  s.base.kind = BaseKind::Planar;
-  s.base.interface = InterfaceKind::NoSlip;
+  Scene s = periodic_incline(2.0, 600.0, 5e6, InterfaceKind::NoSlip);
   s.base.clay_band = true;
-  s.boundary.bottom = BoundaryKind::Free;
   fixtures::make_softening_clay(s.materials[0], 1500.0, 5.0, 5.0, 0.05);
   const Difference d = largest_difference_from_the_cpu<TypeParam>(s, 300);
   std::printf("largest CPU-device difference, clay band, after 300 steps: %.3g (xi up to %.3g)\n",
