@@ -2,7 +2,8 @@
 // in the slope frame. With a limiting shear stress tau below the driving
 // stress it accelerates at g sin(theta) - tau / (rho H) (rigid-block
 // balance); above it, it stays; no-slip holds the basal particles; Coulomb
-// friction mu slides at g (sin - mu cos) below tan(theta) and holds above.
+// friction mu slides at g (sin - mu cos) below tan(theta) and holds above;
+// an elastic block has no clay band, so clay_band leaves it to the interface.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -132,6 +133,19 @@ TEST(BaseContact, FrictionalBlockAcceleratesAtTheRigidBlockRate) {
   EXPECT_NEAR(a, exact, 0.01 * exact);
   // The base resists with tau over the contact length.
   EXPECT_NEAR(sim.basal_shear_force(), -tau * kL, 0.01 * tau * kL);
+}
+
+// An elastic body has no clay band ([base] clay_band): the interface
+// alone limits it, as without the key.
+TEST(BaseContact, ClayBandLeavesAnElasticBlockToTheInterface) {
+  const double tau = 500.0;
+  Scene s = incline(InterfaceKind::Frictional, tau, 0.0);
+  s.base.clay_band = true;
+  Simulation sim = start(s);
+  const double a = acceleration(sim, 1.0, 3.0);
+  const double exact = kG * std::sin(kTheta) - tau / (kRho * kH);
+  std::printf("frictional, clay_band, elastic: a = %.6g, exact %.6g\n", a, exact);
+  EXPECT_NEAR(a, exact, 0.01 * exact);
 }
 
 TEST(BaseContact, FrictionalBlockAboveTheDrivingStressStays) {
