@@ -92,7 +92,8 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
     g.v0x[n] = g.vx[n] = vx;
     g.v0y[n] = g.vy[n] = vy;
     g.dvx[n] = g.dvy[n] = 0.0;
-    g.fbase[n] = g.stuck[n] = g.band_slip[n] = 0.0;
+    g.fbase[n] = g.stuck[n] = 0.0;
+    if (c.clay_band) g.band_slip[n] = 0.0;
     return;
   }
   double v0x = g.px[n] / m, v0y = g.py[n] / m;
@@ -110,7 +111,7 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
   double nx, ny;
   g.fbase[n] = 0.0;
   g.stuck[n] = 0.0;
-  g.band_slip[n] = 0.0;
+  if (c.clay_band) g.band_slip[n] = 0.0;  // read by band_softening alone
   if (base_contact_normal(g, c, n, nx, ny)) {
     // The mean strength of the clay the node sees (p2g's N V su over N V).
     const double band_su = c.clay_band && g.vol[n] > 0.0 ? g.band_su[n] / g.vol[n] : INFINITY;
