@@ -8,7 +8,8 @@ const GridView& Grid::fit(const GridView& placed) {
   const std::size_t n = static_cast<std::size_t>(g.nx) * g.ny;
   if (n > m_.size()) {
     for (auto* a : {&m_, &vol_, &px_, &py_, &fx_, &fy_, &v0x_, &v0y_, &vx_, &vy_, &dvx_, &dvy_,
-                    &vmx_, &vmy_, &fbase_, &gap_, &stuck_, &qx_, &qy_, &xvx_, &xvy_, &band_su_, &band_slip_})
+                    &vmx_, &vmy_, &fbase_, &gap_, &stuck_, &qx_, &qy_, &xvx_, &xvy_, &band_su_,
+                    &band_slip_})
       a->resize(n);
   }
   g.m = m_.data();

@@ -58,24 +58,6 @@ RUNOUT_HD inline double closing_speed(const GridView& g, int n, double dt) {
   return gap > 1e-9 * g.h ? gap / dt : 0.0;
 }
 
-// Geo-contact at a base node (SCENES.md): the velocity towards the base
-// beyond closing the material's gap to it within the step, -gap / dt, is
-// removed (separation is free, and so is coming back: a base node stands
-// for the material up to a cell above the base, and with approach removed
-// outright, as in a velocity-only contact check (Bardenhagen et al. 2000),
-// material that an elastic rebound lifted off the base could never fall
-// back: a sliding block crept upwards, losing interface share 2 V_i / h,
-// and accelerated 2 % too fast. The gap is a displacement check in the
-// sense of Nairn et al. 2018); the tangential velocity is removed
-// (no-slip) or reduced by min(|v_t|, tau A dt / m) (frictional) or by
-// min(|v_t|, mu |dv_n|) (Coulomb: the tangential impulse at most mu times
-// the normal one, Bardenhagen et al. 2001). A = 2 V_i / h is the node's
-// share of the interface: a base node of a full row carries half a cell of
-// volume, h^2 / 2, and so h of interface, and a partly covered one its part.
-// Returns the tangential force of the base on the slide along the base
-// direction (+s), m dv / dt, negative while it resists down-slope motion,
-// and whether the tangential velocity was removed whole (the node sticks:
-// always on a no-slip base).
 // A base node's share of the interface, 2 V_i / h. Under the clay's band
 // it is at most the base's length per node, h over the larger of the
 // normal's components (a straight base at angle a to the grid passes
@@ -96,6 +78,27 @@ RUNOUT_HD inline bool clay_band_slips(const StepConfig& c, double band_su) {
          (c.interface == InterfaceKind::Frictional && band_su < c.shear_strength);
 }
 
+// Geo-contact at a base node (SCENES.md): the velocity towards the base
+// beyond closing the material's gap to it within the step, -gap / dt, is
+// removed (separation is free, and so is coming back: a base node stands
+// for the material up to a cell above the base, and with approach removed
+// outright, as in a velocity-only contact check (Bardenhagen et al. 2000),
+// material that an elastic rebound lifted off the base could never fall
+// back: a sliding block crept upwards, losing interface share 2 V_i / h,
+// and accelerated 2 % too fast. The gap is a displacement check in the
+// sense of Nairn et al. 2018); the tangential velocity is removed
+// (no-slip) or reduced by min(|v_t|, tau A dt / m) (frictional) or by
+// min(|v_t|, mu |dv_n|) (Coulomb: the tangential impulse at most mu times
+// the normal one, Bardenhagen et al. 2001). A = 2 V_i / h is the node's
+// share of the interface: a base node of a full row carries half a cell of
+// volume, h^2 / 2, and so h of interface, and a partly covered one its part.
+// Under StepConfig::clay_band, band_su is the strength of the clay the node
+// carries (+infinity otherwise): a no-slip node then slips beyond
+// band_su A, a frictional one beyond min(tau, band_su) A (interface_share).
+// Returns the tangential force of the base on the slide along the base
+// direction (+s), m dv / dt, negative while it resists down-slope motion,
+// and whether the tangential velocity was removed whole (the node sticks:
+// always on a no-slip base).
 struct ContactResult {
   double force;
   bool stuck;

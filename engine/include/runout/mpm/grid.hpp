@@ -60,8 +60,8 @@ inline void place_box(GridView& g, double xmin, double xmax, double ymin, double
 }
 
 // Empties node n for the next p2g: what p2g adds into (mass, volume,
-// momentum, force, the band's strength) and the base's force zero, the gap +infinity (no
-// particle).
+// momentum, force, the band's strength) and the base's force zero, the
+// gap +infinity (no particle).
 RUNOUT_HD inline void clear_node(const GridView& g, int n) {
   g.m[n] = g.vol[n] = g.px[n] = g.py[n] = g.fx[n] = g.fy[n] = g.fbase[n] = g.band_su[n] = 0.0;
   g.gap[n] = INFINITY;
