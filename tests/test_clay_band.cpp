@@ -9,7 +9,10 @@
 //   whatever the mesh; with a rate effect, su0 (S + eta (v / (t_s
 //   gamma_ref))^n) in the balance: the band stiffens at the slip's rate;
 // - without clay_band the same layer shears across its basal cell instead,
-//   and its velocity moves with the cell (asserted).
+//   and its velocity moves with the cell (asserted);
+// - on a frictional base weaker than the intact clay, a remoulded patch
+//   slips on its own strength and the intact clay on the interface: the
+//   layer slides at the mean of the two, and the patch does not spread.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -47,13 +50,15 @@ MaterialSpec clay(double eta) {
 // A layer 1 m long, repeating along x, on a no-slip planar base. It starts
 // with an isotropic stress (K0 = 1: no deviator for the Tresca clay to
 // yield on) in equilibrium normal to the base.
-Simulation layer(double h, int ppc, bool clay_band, double eta = 0.0) {
-  Scene s = fixtures::block_scene({0.0, 0.0}, {1.0, kH}, {0.0, 0.0}, {1.0, 4.0}, h, ppc, kRho,
-                                  5e6, 0.3);
+Simulation layer(double h, int ppc, bool clay_band, double eta = 0.0, double length = 1.0,
+                 double tau = 0.0) {
+  Scene s = fixtures::block_scene({0.0, 0.0}, {length, kH}, {0.0, 0.0}, {length, 4.0}, h, ppc,
+                                  kRho, 5e6, 0.3);
   s.boundary.left = s.boundary.right = BoundaryKind::Periodic;
   s.gravity.vector = {kG * std::sin(kTheta), -kG * std::cos(kTheta)};
   s.base.kind = BaseKind::Planar;
-  s.base.interface = InterfaceKind::NoSlip;
+  s.base.interface = tau > 0.0 ? InterfaceKind::Frictional : InterfaceKind::NoSlip;
+  s.base.shear_strength = tau;
   s.base.clay_band = clay_band;
   const std::string name = s.materials[0].name;
   s.materials[0] = clay(eta);
@@ -161,4 +166,48 @@ TEST(ClayBand, RateDependentLayerSlidesAsItsBandStiffens) {
     ASSERT_LT(expected, 0.9 * rate_free);
     EXPECT_NEAR(v, expected, 0.01 * expected) << "ppc " << ppc;
   }
+}
+
+// A 4 m layer on a frictional base, tau = 1 kPa: weaker than the intact
+// clay (su0 = 1.5 kPa), stronger than the remoulded (300 Pa), under a
+// driving stress of 2.04 kPa. Its lowest two cells over 1 m of its length
+// start remoulded. The base there slips on the clay and elsewhere on the
+// interface, so the layer slides as a rigid block under the mean basal
+// stress (tau L_intact + su0 / St L_patch) / L; the intact clay's basal
+// particles, which the interface spares any shear beyond tau, stay intact
+// (xi under 1e-3) from a cell beside the patch on. Were the slip handed to
+// every particle of a node whose mean clay is weaker than tau, as a node
+// mixing the patch with intact clay is, the patch would spread along the
+// base by a cell's reach each time its edge softened.
+TEST(ClayBand, RemouldedPatchOnAFrictionalBaseSlipsOnItselfAndStaysAPatch) {
+  const double h = 0.25, L = 4.0, tau = 1000.0, x0 = 1.5, x1 = 2.5, t1 = 1.0;
+  Simulation sim = layer(h, 2, true, 0.0, L, tau);
+  Particles& P = sim.particles();
+  const auto in_patch = [&](int p) { return P.x[p] > x0 && P.x[p] < x1 && P.y[p] < 2 * h; };
+  for (int p = 0; p < P.size(); ++p)
+    if (in_patch(p)) P.xi[p] = 100.0 * kXi95;
+  const double residual = kSu0 / kSt;
+  const double basal = (tau * (L - (x1 - x0)) + residual * (x1 - x0)) / L;
+  const double accel = kG * std::sin(kTheta) - basal / (kRho * kH);
+  sim.advance_to(0.2);
+  const double v0 = mean_velocity_x(sim);
+  sim.advance_to(t1);
+  const double v = mean_velocity_x(sim), expected = v0 + accel * (t1 - 0.2);
+  const double on_tau = v0 + (kG * std::sin(kTheta) - tau / (kRho * kH)) * (t1 - 0.2);
+  // The patch, moved with the layer, and the intact clay along the base.
+  const double shift = mean_displacement_x(sim);
+  double intact_xi = 0.0, patch_xi = INFINITY;
+  for (int p = 0; p < P.size(); ++p) {
+    if (P.y[p] > h) continue;
+    const double x = std::fmod(P.x[p] - shift + 2 * L, L);
+    if (x > x0 && x < x1) patch_xi = std::fmin(patch_xi, P.xi[p]);
+    if (x < x0 - h || x > x1 + h) intact_xi = std::fmax(intact_xi, P.xi[p]);
+  }
+  std::printf("v(%.1f s) %.4f m/s, rigid layer on patch and interface %.4f, all on tau %.4f; "
+              "basal xi: intact at most %.2e, patch at least %.1f\n",
+              t1, v, expected, on_tau, intact_xi, patch_xi);
+  ASSERT_GT(expected - on_tau, 0.05 * expected);
+  EXPECT_NEAR(v, expected, 0.01 * expected);
+  EXPECT_LT(intact_xi, 1e-3);
+  EXPECT_GT(patch_xi, 100.0 * kXi95);
 }

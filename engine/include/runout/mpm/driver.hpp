@@ -114,7 +114,7 @@ struct G2pMomentum {
   template <class St, class Add, class Lower>
   RUNOUT_HD void operator()(int p, const St& st, Add add, Lower) const {
     g2p(P, p, st, g, c);
-    if (c.clay_band) band_softening(P, p, st, g, mats, dt, band_rate);
+    if (c.clay_band) band_softening(P, p, st, g, c, mats, dt, band_rate);
     p2g_momentum(P, p, st, g, c, add);
   }
   // APIC's g2p takes the cell gradient where its D is degenerate.

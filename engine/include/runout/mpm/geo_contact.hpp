@@ -71,11 +71,16 @@ RUNOUT_HD inline double interface_share(const StepConfig& c, double vol, double 
   return std::fmin(share, h / std::fmax(std::fabs(nx), std::fabs(ny)));
 }
 
-// Whether the clay's band, of strength band_su, is what slips at a base
-// node under StepConfig::clay_band, rather than the interface.
-RUNOUT_HD inline bool clay_band_slips(const StepConfig& c, double band_su) {
-  return c.interface == InterfaceKind::NoSlip ||
-         (c.interface == InterfaceKind::Frictional && band_su < c.shear_strength);
+// The interface's own strength under StepConfig::clay_band: tau on a
+// frictional base, none on a no-slip one. The base under a particle slips
+// at the weaker of its clay's band and this, and the slip shears the clay
+// only where the clay is the weaker: intact clay beside a remoulded patch
+// then takes at most tau through the interface, under its peak su, and the
+// patch does not spread along the base by the slip (only the clay's own
+// bands remould it). Taken per particle, not from a node's mean su, which
+// would hand a patch's slip to the intact clay within a cell of it.
+RUNOUT_HD inline double interface_strength(const StepConfig& c) {
+  return c.interface == InterfaceKind::Frictional ? c.shear_strength : INFINITY;
 }
 
 // Geo-contact at a base node (SCENES.md): the velocity towards the base
@@ -92,9 +97,10 @@ RUNOUT_HD inline bool clay_band_slips(const StepConfig& c, double band_su) {
 // the normal one, Bardenhagen et al. 2001). A = 2 V_i / h is the node's
 // share of the interface: a base node of a full row carries half a cell of
 // volume, h^2 / 2, and so h of interface, and a partly covered one its part.
-// Under StepConfig::clay_band, band_su is the strength of the clay the node
-// carries (+infinity otherwise): a no-slip node then slips beyond
-// band_su A, a frictional one beyond min(tau, band_su) A (interface_share).
+// Under StepConfig::clay_band, band_su is the mean over the particles the
+// node carries of the weaker of their clay and the interface
+// (interface_strength; +infinity without the band), and the node slips
+// beyond band_su A (interface_share).
 // Returns the tangential force of the base on the slide along the base
 // direction (+s), m dv / dt, negative while it resists down-slope motion,
 // and whether the tangential velocity was removed whole (the node sticks:

@@ -52,9 +52,10 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const St& st, const Grid
     add(g.fy, n0, -(vsxy * dNx + vsyy * dNy));
   });
   if (!near_base) return;
-  // The basal band's strength: the clay's current su; an elastic body has
-  // no band, and holds its node.
-  const double band_su = P.su[p] > 0.0 ? P.su[p] : INFINITY;
+  // The basal band's strength: the clay's current su, or the interface's
+  // where that is weaker; an elastic body has no band (a no-slip base
+  // holds it).
+  const double band_su = std::fmin(P.su[p] > 0.0 ? P.su[p] : INFINITY, interface_strength(c));
   for_each_node(g, st, [&](int n, double N, double, double, double, double) {
     add(g.vol, n, N * V);
     if (N > 0.0) {
@@ -118,11 +119,8 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
     const ContactResult r = geo_contact(c, m, g.vol[n], g.h, dt, closing_speed(g, n, dt), nx,
                                         ny, vx, vy, band_su);
     g.fbase[n] = r.force;
-    // The slip is the band's where the band is weaker than the interface;
-    // a frictional interface weaker than the clay slips on the clay
-    // without shearing it.
-    if (!r.stuck && c.clay_band && clay_band_slips(c, band_su))
-      g.band_slip[n] = std::fabs(vx * ny - vy * nx) * dt;
+    // Which clay the slip shears is each particle's to say (band_softening).
+    if (!r.stuck && c.clay_band) g.band_slip[n] = std::fabs(vx * ny - vy * nx) * dt;
     if (r.stuck) {
       // The node's material is held still, and so is its start velocity:
       // that is a projection of particle velocities from up to a cell above
@@ -316,15 +314,17 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const St& st,
 // holds (StrengthParams::regularised) where it exceeds its own: so the
 // band's strength that p2g gathers at the nodes softens after
 // delta95 = xi95 t_s and stiffens with the slip's rate, whatever the cell
-// and the particles. rate[p] keeps the band's rate (0 off the band) for
-// the regularised rate at the step's end; null where no clay has a t_s.
+// and the particles; on a frictional base only a particle whose clay is
+// weaker than the interface (interface_strength). rate[p] keeps the band's
+// rate (0 off the band) for the regularised rate at the step's end; null
+// where no clay has a t_s.
 template <class St>
 RUNOUT_HD inline void band_softening(const ParticleView& P, int p, const St& st,
-                                     const GridView& g, const MaterialParams* mats, double dt,
-                                     double* rate) {
+                                     const GridView& g, const StepConfig& c,
+                                     const MaterialParams* mats, double dt, double* rate) {
   const StrengthParams& s = mats[P.material[p]].strength;
   double slip = 0.0, weight = 0.0;
-  if (s.band_thickness > 0.0) {
+  if (s.band_thickness > 0.0 && P.su[p] < interface_strength(c)) {
     for_each_row(g, st, [&](int n0, double wy, double, double) {
       for (int a = 0; a < kStencilNodes; ++a) {
         const double d = g.band_slip[n0 + a];
