@@ -223,7 +223,6 @@ class CudaBackend {
   double* xi_start() const { return xi_start_.get(); }
   double* xi_local() const { return xi_local_.get(); }
   double* xi_average() const { return xi_average_.get(); }
-  double* band_rate() const { return band_rate_.get(); }
   // On the host: the lattice sums of nonlocal.hpp have no device version
   // yet, so positions, volumes, materials and the increments go over and
   // the regularised increments come back (five arrays a step, regularised
@@ -248,7 +247,7 @@ class CudaBackend {
   mutable int current_ = 0;  // the set that holds the particles
   mutable cuda::ParticleSet sets_[2];
   cuda::Buffer<double> dx_, dy_, lxx_, lxy_, lyx_, lyy_, speed_;
-  cuda::Buffer<double> xi_start_, xi_local_, xi_average_, band_rate_;
+  cuda::Buffer<double> xi_start_, xi_local_, xi_average_;
   cuda::Buffer<int> keys_in_, keys_out_, values_in_, values_out_;
   cuda::Buffer<unsigned char> sort_temp_;
   static constexpr int kGridArrays = 23;  // the double arrays of GridView

@@ -19,7 +19,8 @@ ParticleView view_of(const Fields& f, int n) {
   v.n = n;
   double** const out[kParticleDoubles] = {&v.x,   &v.y,   &v.vx,  &v.vy,  &v.mass, &v.vol0,
                                           &v.vol, &v.sxx, &v.syy, &v.sxy, &v.szz,  &v.xi,
-                                          &v.gamma_dot, &v.su, &v.x0, &v.y0,
+                                          &v.gamma_dot, &v.su, &v.band_xi, &v.band_rate,
+                                          &v.x0, &v.y0,
                                           &v.cxx, &v.cxy, &v.cyx, &v.cyy,
                                           &v.fxx, &v.fxy, &v.fyx, &v.fyy};
   for (int k = 0; k < kParticleDoubles; ++k) *out[k] = f.d[k];
@@ -151,7 +152,7 @@ CudaBackend::CudaBackend(Particles P, const std::vector<MaterialParams>& materia
   for (auto& s : sets_) s.reserve(cap);
   for (auto* b : {&dx_, &dy_, &lxx_, &lxy_, &lyx_, &lyy_, &speed_}) b->reserve(cap);
   if (std::any_of(nonlocal_lengths.begin(), nonlocal_lengths.end(), [](double l) { return l > 0; }))
-    for (auto* b : {&xi_start_, &xi_local_, &xi_average_, &band_rate_}) b->reserve(cap);
+    for (auto* b : {&xi_start_, &xi_local_, &xi_average_}) b->reserve(cap);
   for (auto* b : {&keys_in_, &keys_out_, &values_in_, &values_out_}) b->reserve(cap);
   partials_.reserve(cuda::kReduceBlocks * 64);
   static_assert(sizeof(ParticleBox) <= 64 && sizeof(SpeedMax) <= 64 && sizeof(cuda::Sum) <= 64,

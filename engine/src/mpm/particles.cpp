@@ -4,7 +4,8 @@ namespace runout {
 
 std::array<StaggeredArray*, kParticleDoubles> Particles::double_arrays() {
   return {&x,   &y,   &vx,  &vy,  &mass, &vol0, &vol, &sxx, &syy, &sxy, &szz, &xi,
-          &gamma_dot, &su, &x0, &y0, &cxx, &cxy, &cyx, &cyy, &fxx, &fxy, &fyx, &fyy};
+          &gamma_dot, &su, &band_xi, &band_rate, &x0, &y0, &cxx, &cxy, &cyx, &cyy, &fxx, &fxy,
+          &fyx, &fyy};
 }
 
 std::array<const StaggeredArray*, kParticleDoubles> Particles::double_arrays() const {
@@ -54,7 +55,8 @@ ParticleView Particles::view() {
   return ParticleView{size(),        x.data(),    y.data(),   vx.data(),
                       vy.data(),     mass.data(), vol0.data(), vol.data(),
                       sxx.data(),    syy.data(),  sxy.data(), szz.data(),
-                      xi.data(),     gamma_dot.data(), su.data(), x0.data(),
+                      xi.data(),     gamma_dot.data(), su.data(), band_xi.data(),
+                      band_rate.data(), x0.data(),
                       y0.data(),     cxx.data(),  cxy.data(), cyx.data(),
                       cyy.data(),    fxx.data(),  fxy.data(), fyx.data(),
                       fyy.data(),    body.data(), material.data(), id.data()};

@@ -25,7 +25,7 @@ namespace {
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "checkpoints are little-endian");
 
 constexpr char kMagic[8] = {'R', 'U', 'N', 'O', 'U', 'T', 'C', 'K'};
-constexpr std::uint32_t kVersion = 4;  // 4: each index entry with its frame's record
+constexpr std::uint32_t kVersion = 5;  // 5: the particles carry their basal band
 // magic, version, payload size; the payload; then its checksum.
 constexpr std::size_t kHeaderBytes = sizeof kMagic + 4 + 8;
 constexpr std::size_t kChecksumBytes = 8;

@@ -117,13 +117,10 @@ concept Backend =
       { b.for_cell_groups(g, c, pass) } -> std::same_as<SpeedMax>;
       // Regularised softening (nonlocal.hpp): xi at the step's start, its
       // local increment and the increment's nonlocal average, per particle
-      // (allocated in regularised runs only, as is band_rate).
+      // (allocated in regularised runs only).
       { b.xi_start() } -> std::same_as<double*>;
       { b.xi_local() } -> std::same_as<double*>;
       { b.xi_average() } -> std::same_as<double*>;
-      // The rate of the clay's basal band (StepConfig::clay_band) in the
-      // step, per particle, from g2p to the regularised rate.
-      { b.band_rate() } -> std::same_as<double*>;
       b.nonlocal_average(nonlocal, in, a);
       { b.nonlocal_lengths() } -> std::convertible_to<const double*>;  // per material
       { b.materials() } -> std::convertible_to<const MaterialParams*>;

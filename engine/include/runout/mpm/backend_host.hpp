@@ -28,7 +28,7 @@ class HostBackend {
     const std::size_t n = particles_.size();
     const bool nonlocal = std::any_of(lengths_.begin(), lengths_.end(), [](double l) { return l > 0; });
     if (nonlocal)
-      for (auto* a : {&xi_start_, &xi_local_, &xi_average_, &band_rate_}) a->assign(n, 0.0);
+      for (auto* a : {&xi_start_, &xi_local_, &xi_average_}) a->assign(n, 0.0);
   }
 
   Particles& host_particles() { return particles_; }
@@ -52,7 +52,6 @@ class HostBackend {
   double* xi_start() { return xi_start_.data(); }
   double* xi_local() { return xi_local_.data(); }
   double* xi_average() { return xi_average_.data(); }
-  double* band_rate() { return band_rate_.data(); }
   void nonlocal_average(NonlocalAverage& nonlocal, const double* in, double* out) {
     const ParticleView P = particles_.view();
     nonlocal.apply({P.n, P.x, P.y, P.vol, P.material}, in, out);
@@ -67,7 +66,7 @@ class HostBackend {
   std::vector<MaterialParams> materials_;
   std::vector<double> lengths_;
   // Staggered in their pages (staggered_allocator.hpp), as the particles'.
-  StaggeredArray xi_start_, xi_local_, xi_average_, band_rate_;  // nonlocal runs only
+  StaggeredArray xi_start_, xi_local_, xi_average_;  // nonlocal runs only
 };
 
 }  // namespace runout

@@ -63,9 +63,10 @@ struct P2g {
   ParticleView P;
   GridView g;
   StepConfig c;
+  const MaterialParams* mats;
   template <class St, class Add, class Lower>
   RUNOUT_HD void operator()(int p, const St& st, Add add, Lower lower) const {
-    p2g(P, p, st, g, c, add, lower);
+    p2g(P, p, st, g, c, mats, add, lower);
   }
   // Whether the stage reads the stencil's derivatives (st.d): a backend
   // that makes stencils in each pass may leave them out where not.
@@ -110,11 +111,10 @@ struct G2pMomentum {
   StepConfig c;
   const MaterialParams* mats;
   double dt;
-  double* band_rate;
   template <class St, class Add, class Lower>
   RUNOUT_HD void operator()(int p, const St& st, Add add, Lower) const {
     g2p(P, p, st, g, c);
-    if (c.clay_band) band_softening(P, p, st, g, c, mats, dt, band_rate);
+    if (c.clay_band) band_softening(P, p, st, g, c, mats, dt);
     p2g_momentum(P, p, st, g, c, add);
   }
   // APIC's g2p takes the cell gradient where its D is degenerate.
@@ -217,11 +217,10 @@ struct SetNonlocalXi {
   const double* lengths;  // per material
   const MaterialParams* mats;
   double dt;
-  const double* band_rate;  // the clay's basal band's (band_softening), or null
   RUNOUT_HD void operator()(int p) const {
     if (lengths[P.material[p]] <= 0.0) return;
     P.xi[p] = start[p] + average[p];
-    P.gamma_dot[p] = band_rate ? std::fmax(average[p] / dt, band_rate[p]) : average[p] / dt;
+    P.gamma_dot[p] = average[p] / dt;
     P.su[p] = strength(mats[P.material[p]].strength, P.xi[p], P.gamma_dot[p]);
   }
 };
@@ -269,7 +268,7 @@ class Driver {
   void fit_grid(double dt);
   void exchange(Exchange after);
   void xpic_start_velocity(const StepConfig& c);
-  void regularise_softening(double dt, const double* band_rate);
+  void regularise_softening(double dt);
   [[noreturn]] void fail(double dt);
 
   Base base_;
@@ -430,7 +429,7 @@ void Driver<B>::xpic_start_velocity(const StepConfig& c) {
 // Galavi & Schweiger 2010: local return, nonlocal internal variable). The
 // increments are measured at the particles' end-of-step positions.
 template <Backend B>
-void Driver<B>::regularise_softening(double dt, const double* band_rate) {
+void Driver<B>::regularise_softening(double dt) {
   const ParticleView P = backend_.particles();
   double* start = backend_.xi_start();
   double* local = backend_.xi_local();
@@ -438,7 +437,7 @@ void Driver<B>::regularise_softening(double dt, const double* band_rate) {
   backend_.for_each_particle(stage::XiIncrement{P, start, local});
   backend_.nonlocal_average(nonlocal_, local, average);
   backend_.for_each_particle(stage::SetNonlocalXi{P, start, average, backend_.nonlocal_lengths(),
-                                                  backend_.materials(), dt, band_rate});
+                                                  backend_.materials(), dt});
 }
 
 template <Backend B>
@@ -450,9 +449,8 @@ void Driver<B>::step(double dt) {
   const GridView g = grid_;
   const ParticleView P = backend_.particles();
   const bool nonlocal = nonlocal_.active();
-  double* const band_rate = c.clay_band && nonlocal ? backend_.band_rate() : nullptr;
 
-  backend_.scatter(g, c, stage::P2g{P, g, c});
+  backend_.scatter(g, c, stage::P2g{P, g, c, backend_.materials()});
   exchange(Exchange::AfterP2g);
   backend_.for_each_node(g, stage::GridUpdate{g, c, dt});
   exchange(Exchange::AfterGridUpdate);
@@ -463,7 +461,7 @@ void Driver<B>::step(double dt) {
     backend_.fill_nodes(g, g.px, 0.0);
     backend_.fill_nodes(g, g.py, 0.0);
   }
-  backend_.scatter(g, c, stage::G2pMomentum{P, g, c, backend_.materials(), dt, band_rate});
+  backend_.scatter(g, c, stage::G2pMomentum{P, g, c, backend_.materials(), dt});
   exchange(Exchange::AfterMomentum);
   backend_.for_each_node(g, stage::Remap{g, c, dt});
   exchange(Exchange::AfterRemap);
@@ -494,7 +492,7 @@ void Driver<B>::step(double dt) {
   });
   if (speed.bad > 0) fail(dt);
   // After the mean stress, which it neither reads nor changes.
-  if (nonlocal) regularise_softening(dt, band_rate);
+  if (nonlocal) regularise_softening(dt);
   max_signal_speed_ = speed.max;
   basal_shear_force_ = basal;
   time_ += dt;

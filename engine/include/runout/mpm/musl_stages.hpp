@@ -8,11 +8,27 @@
 #include "runout/mpm/geo_contact.hpp"
 #include "runout/mpm/grid.hpp"
 #include "runout/mpm/host_device.hpp"
+#include "runout/mpm/material.hpp"
 #include "runout/mpm/particles.hpp"
 #include "runout/mpm/step_config.hpp"
 #include "runout/mpm/stencil.hpp"
 
 namespace runout {
+
+// The strength of the clay's basal band at particle p (StepConfig::
+// clay_band): the clay's at its own plastic shear plus the slip the band
+// has carried over its thickness t_s (P.band_xi), and at the faster of its
+// own rate and the band's. The band is t_s thick, thinner than any
+// particle: its remoulding weakens the base, not the clay above it, which
+// keeps its own strength P.su (else a layer as thick as the particles that
+// base nodes reach, about a cell, would remould with the band, and the
+// answer would move with the cell). An elastic body has no band.
+RUNOUT_HD inline double band_strength(const ParticleView& P, int p, const MaterialParams* mats) {
+  if (!(P.su[p] > 0.0)) return INFINITY;
+  if (P.band_xi[p] == 0.0 && P.band_rate[p] == 0.0) return P.su[p];
+  return strength(mats[P.material[p]].strength, P.xi[p] + P.band_xi[p],
+                  std::fmax(P.gamma_dot[p], P.band_rate[p]));
+}
 
 // Stage 1. add(array, node, value) does array[node] += value and
 // lower(array, node, value) array[node] = min(array[node], value): plain
@@ -21,7 +37,8 @@ namespace runout {
 // them rests on the base: the material there touches it.
 template <class St, class Add, class Lower>
 RUNOUT_HD inline void p2g(const ParticleView& P, int p, const St& st, const GridView& g,
-                          const StepConfig& c, Add&& add, Lower&& lower) {
+                          const StepConfig& c, const MaterialParams* mats, Add&& add,
+                          Lower&& lower) {
   const double m = P.mass[p], V = P.vol[p];
   const bool affine = c.transfer == TransferKind::Apic;
   const AffineVelocity v = particle_velocity(P, p, affine);
@@ -52,10 +69,10 @@ RUNOUT_HD inline void p2g(const ParticleView& P, int p, const St& st, const Grid
     add(g.fy, n0, -(vsxy * dNx + vsyy * dNy));
   });
   if (!near_base) return;
-  // The basal band's strength: the clay's current su, or the interface's
-  // where that is weaker; an elastic body has no band (a no-slip base
-  // holds it).
-  const double band_su = std::fmin(P.su[p] > 0.0 ? P.su[p] : INFINITY, interface_strength(c));
+  // The base under the particle slips at the weaker of its clay's band and
+  // the interface (a no-slip base holds an elastic body).
+  const double band_su =
+      c.clay_band ? std::fmin(band_strength(P, p, mats), interface_strength(c)) : 0.0;
   for_each_node(g, st, [&](int n, double N, double, double, double, double) {
     add(g.vol, n, N * V);
     if (N > 0.0) {
@@ -308,23 +325,20 @@ RUNOUT_HD inline void p2g_momentum(const ParticleView& P, int p, const St& st,
 
 // The clay's basal band (StepConfig::clay_band), after g2p: a particle
 // that slipping base nodes reach takes their mean slip delta in the step
-// as the displacement across its band, xi += delta / t_s (the crack band
-// of Bazant & Oh 1983, as the regularised softening scales a band's
-// strain), and delta / (t_s dt) as the band's rate, which its strength
-// holds (StrengthParams::regularised) where it exceeds its own: so the
-// band's strength that p2g gathers at the nodes softens after
+// as the displacement across its band, band_xi += delta / t_s (the crack
+// band of Bazant & Oh 1983, as the regularised softening scales a band's
+// strain), and delta / (t_s dt) as the band's rate: so the band's strength
+// (band_strength) that p2g gathers at the nodes softens after
 // delta95 = xi95 t_s and stiffens with the slip's rate, whatever the cell
-// and the particles; on a frictional base only a particle whose clay is
-// weaker than the interface (interface_strength). rate[p] keeps the band's
-// rate (0 off the band) for the regularised rate at the step's end; null
-// where no clay has a t_s.
+// and the particles. On a frictional base only where the band is weaker
+// than the interface (interface_strength).
 template <class St>
 RUNOUT_HD inline void band_softening(const ParticleView& P, int p, const St& st,
                                      const GridView& g, const StepConfig& c,
-                                     const MaterialParams* mats, double dt, double* rate) {
+                                     const MaterialParams* mats, double dt) {
   const StrengthParams& s = mats[P.material[p]].strength;
   double slip = 0.0, weight = 0.0;
-  if (s.band_thickness > 0.0 && P.su[p] < interface_strength(c)) {
+  if (s.band_thickness > 0.0 && band_strength(P, p, mats) < interface_strength(c)) {
     for_each_row(g, st, [&](int n0, double wy, double, double) {
       for (int a = 0; a < kStencilNodes; ++a) {
         const double d = g.band_slip[n0 + a];
@@ -337,13 +351,12 @@ RUNOUT_HD inline void band_softening(const ParticleView& P, int p, const St& st,
     });
   }
   if (!(weight > 0.0)) {
-    if (rate) rate[p] = 0.0;
+    P.band_rate[p] = 0.0;
     return;
   }
   const double band = slip / (weight * s.band_thickness);  // the band's shear in the step
-  P.xi[p] += band;
-  P.gamma_dot[p] = std::fmax(P.gamma_dot[p], band / dt);
-  if (rate) rate[p] = band / dt;
+  P.band_xi[p] += band;
+  P.band_rate[p] = band / dt;
 }
 
 // Stage 5. The remapped velocity v_i strains the particles (stage 6); the

@@ -21,6 +21,10 @@ struct ParticleView {
   double *xi;             // accumulated plastic shear strain
   double *gamma_dot;      // shear strain rate [1/s]
   double *su;             // current undrained strength [Pa] (0 for elastic)
+  // The clay's basal band under StepConfig::clay_band (band_softening):
+  // the slip it has carried over its thickness t_s, and that slip's rate
+  // over t_s in the last step (0 off the band).
+  double *band_xi, *band_rate;
   double *x0, *y0;        // initial position [m]
   // Affine velocity C = dv/dx carried by the particle (APIC, Jiang et al.
   // 2015); zero under the PIC/FLIP transfer.
@@ -34,13 +38,13 @@ struct ParticleView {
 };
 
 // The number of double arrays a particle carries.
-constexpr int kParticleDoubles = 24;
+constexpr int kParticleDoubles = 26;
 
 struct Particles {
   // Staggered in their pages (staggered_allocator.hpp): the stress update
   // loads and stores a dozen of them at one index.
-  StaggeredArray x, y, vx, vy, mass, vol0, vol, sxx, syy, sxy, szz, xi, gamma_dot, su, x0, y0, cxx,
-      cxy, cyx, cyy, fxx, fxy, fyx, fyy;
+  StaggeredArray x, y, vx, vy, mass, vol0, vol, sxx, syy, sxy, szz, xi, gamma_dot, su, band_xi,
+      band_rate, x0, y0, cxx, cxy, cyx, cyy, fxx, fxy, fyx, fyy;
   std::vector<int> body, material;
   std::vector<std::int64_t> id;
 
