@@ -47,6 +47,7 @@ Particles random_particles(int n) {
     p.sxx[i] = value(1e5); p.syy[i] = value(1e5); p.szz[i] = value(1e5); p.sxy[i] = value(1e4);
     p.mass[i] = 1 + std::abs(value(10)); p.vol[i] = std::abs(value(1e-2)); p.vol0[i] = std::abs(value(1e-2));
     p.xi[i] = std::abs(value(2)); p.gamma_dot[i] = std::abs(value(1e-3)); p.su[i] = std::abs(value(1.5e4));
+    p.band_xi[i] = std::abs(value(40));
     p.body[i] = i % 4 - 1; p.material[i] = i % 3; p.id[i] = (std::int64_t{1} << 40) + 7 * i;
   }
   return p;
@@ -89,7 +90,8 @@ std::vector<Expected> expected_arrays() {
 }
 
 // optional_arrays: how many arrays the frame carries beyond the particle
-// fields (rate_factor, when the frame is given the strength laws).
+// fields (rate_factor, when the frame is given the strength laws, and
+// band_shear_strain, under the clay's basal band).
 void expect_frame(vtkUnstructuredGrid* grid, const Particles& p, double time,
                   int optional_arrays = 0) {
   const int n = p.size();
@@ -163,15 +165,18 @@ TEST_P(Readback, FrameReadsBackExactly) {
   slow.eta = 0.0167;
   slow.rate_exponent = 0.5;
   const FrameInfo info{12.375, 0.125, {-5.0, 3.0, 0.0, 0.0, 40.0, -0.7},
-                       {StrengthParams{}, fast, slow}};
+                       {StrengthParams{}, fast, slow}, true};
   write_particles_vtu(file, p, info, compress);
 
   vtkNew<vtkXMLUnstructuredGridReader> reader;
   reader->SetFileName(file.c_str());
   reader->Update();
   EXPECT_EQ(reader->GetErrorCode(), 0);
-  expect_frame(reader->GetOutput(), p, 12.375, 1);
+  expect_frame(reader->GetOutput(), p, 12.375, 2);
 
+  vtkDataArray* band = reader->GetOutput()->GetPointData()->GetArray("band_shear_strain");
+  ASSERT_NE(band, nullptr);
+  for (int i = 0; i < p.size(); ++i) EXPECT_EQ(band->GetTuple1(i), p.band_xi[i]);
   vtkDataArray* rate = reader->GetOutput()->GetPointData()->GetArray("rate_factor");
   ASSERT_NE(rate, nullptr);
   for (int i = 0; i < p.size(); ++i)

@@ -79,6 +79,7 @@ void write_particles_vtu(const std::string& path, const Particles& p,
   array("plastic_shear_strain", 1, p.xi);
   array("shear_strain_rate", 1, p.gamma_dot);
   array("strength", 1, p.su);
+  if (info.clay_band) array("band_shear_strain", 1, p.band_xi);
   if (!info.strengths.empty())
     array("rate_factor", 1, tuples<1>(n, [&](int i) {
             return std::array<double, 1>{rate_factor(info.strengths[p.material[i]], p.gamma_dot[i])};

@@ -32,16 +32,17 @@ constexpr double kFrameBytesPerRawByte = 2.0 * 4.0 / 3.0;
 //   state: kParticleDoubles doubles, body and material ints, a 64-bit id;
 //   step scratch: dx, dy, the stencil and velocity gradient, and the
 //   order, block, cell and next ints of the block sort;
-//   a frame being written: 28 doubles, 3 int64 (id, connectivity,
+//   a frame being written: up to 29 doubles (rate_factor and
+//   band_shear_strain where written), 3 int64 (id, connectivity,
 //   offset), 2 int32 and a uint8 cell type.
 constexpr double kParticleState = kParticleDoubles * sizeof(double) + 2 * sizeof(int) + sizeof(std::int64_t);
 constexpr double kParticleScratch =
     2 * sizeof(double) + sizeof(Stencil2D) + sizeof(VelocityGradient) + 4 * sizeof(int);
-constexpr double kParticleFrame = 28 * 8 + 3 * 8 + 2 * 4 + 1;
+constexpr double kParticleFrame = 29 * 8 + 3 * 8 + 2 * 4 + 1;
 
-// Per grid node (grid.hpp): 21 nodal doubles, and the cell volume and
+// Per grid node (grid.hpp): 23 nodal doubles, and the cell volume and
 // mean of the volumetric smoothing (one cell per node, near enough).
-constexpr double kNodeBytes = 23 * sizeof(double);
+constexpr double kNodeBytes = 25 * sizeof(double);
 
 // Per depth-averaged element (dam.hpp, dam_output.cpp): s, v and the
 // lumped mass of its node, volume, xi, gamma_dot, tau, two slope

@@ -401,6 +401,7 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
   HistoryWriter history((dir / "history.csv").string(), resumed != nullptr);
   FrameInfo info{0.0, spacing, base_polyline(scene), {}};
   for (const MaterialParams& m : sim.materials()) info.strengths.push_back(m.strength);
+  info.clay_band = scene.base.clay_band;
 
   if (resumed) summary.frames = resumed->frames;
   const auto write_frame = [&] {

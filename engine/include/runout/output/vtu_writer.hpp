@@ -25,6 +25,9 @@ struct FrameInfo {
   // The strength law of each material: with it the frame carries each
   // particle's rate factor R(gamma_dot) as rate_factor (omitted when empty).
   std::vector<StrengthParams> strengths;
+  // Whether the particles carry the clay's basal band ([base] clay_band):
+  // its shear as band_shear_strain (omitted otherwise).
+  bool clay_band = false;
 };
 
 // One frame: every particle field, plus displacement, the stress tensor and
