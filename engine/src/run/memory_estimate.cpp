@@ -32,13 +32,14 @@ constexpr double kFrameBytesPerRawByte = 2.0 * 4.0 / 3.0;
 //   state: kParticleDoubles doubles, body and material ints, a 64-bit id;
 //   step scratch: dx, dy, the stencil and velocity gradient, and the
 //   order, block, cell and next ints of the block sort;
-//   a frame being written: up to 29 doubles (rate_factor and
-//   band_shear_strain where written), 3 int64 (id, connectivity,
-//   offset), 2 int32 and a uint8 cell type.
+//   a frame being written: 28 doubles (29 with band_shear_strain, under
+//   the clay's basal band), 3 int64 (id, connectivity, offset), 2 int32
+//   and a uint8 cell type.
 constexpr double kParticleState = kParticleDoubles * sizeof(double) + 2 * sizeof(int) + sizeof(std::int64_t);
 constexpr double kParticleScratch =
     2 * sizeof(double) + sizeof(Stencil2D) + sizeof(VelocityGradient) + 4 * sizeof(int);
-constexpr double kParticleFrame = 29 * 8 + 3 * 8 + 2 * 4 + 1;
+constexpr double kParticleFrame = 28 * 8 + 3 * 8 + 2 * 4 + 1;
+double particle_frame(const Scene& scene) { return kParticleFrame + (scene.base.clay_band ? 8 : 0); }
 
 // Per grid node (grid.hpp): 23 nodal doubles, and the cell volume and
 // mean of the volumetric smoothing (one cell per node, near enough).
@@ -73,7 +74,7 @@ void count_particles(const Scene& scene, MemoryEstimate& e) {
     e.items += area / (s * s);
     e.items_bound += area / (s * s) + perimeter(body.polygon) / (s * std::sqrt(2.0)) + 2.0;
   }
-  e.item_bytes = kParticleState + kParticleScratch + kParticleFrame * kFrameBytesPerRawByte;
+  e.item_bytes = kParticleState + kParticleScratch + particle_frame(scene) * kFrameBytesPerRawByte;
   e.grid_nodes = span(scene.grid, 0) * span(scene.grid, 1);
   e.node_bytes = kNodeBytes;
 }
@@ -203,9 +204,7 @@ std::string byte_text(double bytes) {
 namespace runout {
 namespace {
 
-// A frame's bytes per particle as written uncompressed (kParticleFrame
-// raw, base64), and a profile row per cell of the domain's width.
-constexpr double kFrameFileBytesPerParticle = kParticleFrame * 4.0 / 3.0;
+// A profile row per cell of the domain's width.
 constexpr double kProfileRowBytes = 6 * 24;
 
 }  // namespace
@@ -220,7 +219,8 @@ RunCost estimate_cost(const Scene& scene, const MemoryEstimate& memory) {
   c.frames = std::floor(scene.time.end / scene.time.output_interval) + 1;
   const double items = memory.items;
   const double bins = (scene.grid.max.x() - scene.grid.min.x()) / scene.grid.cell_size;
-  c.output_bytes = c.frames * (items * kFrameFileBytesPerParticle + bins * kProfileRowBytes);
+  // A frame's bytes per particle as written uncompressed: raw, in base64.
+  c.output_bytes = c.frames * (items * particle_frame(scene) * 4.0 / 3.0 + bins * kProfileRowBytes);
   return c;
 }
 
