@@ -131,7 +131,8 @@ RUNOUT_HD inline void grid_update(const GridView& g, int n, const StepConfig& c,
   g.stuck[n] = 0.0;
   if (c.clay_band) g.band_slip[n] = 0.0;  // read by band_softening alone
   if (base_contact_normal(g, c, n, nx, ny)) {
-    // The mean strength of the clay the node sees (p2g's N V su over N V).
+    // The base's strength at the node: the mean over its particles of the
+    // weaker of their band and the interface (p2g's N V band_su over N V).
     const double band_su = c.clay_band && g.vol[n] > 0.0 ? g.band_su[n] / g.vol[n] : INFINITY;
     const ContactResult r = geo_contact(c, m, g.vol[n], g.h, dt, closing_speed(g, n, dt), nx,
                                         ny, vx, vy, band_su);
@@ -338,7 +339,7 @@ RUNOUT_HD inline void band_softening(const ParticleView& P, int p, const St& st,
                                      const MaterialParams* mats, double dt) {
   const StrengthParams& s = mats[P.material[p]].strength;
   double slip = 0.0, weight = 0.0;
-  if (s.band_thickness > 0.0 && band_strength(P, p, mats) < interface_strength(c)) {
+  if (s.band_thickness > 0.0) {
     for_each_row(g, st, [&](int n0, double wy, double, double) {
       for (int a = 0; a < kStencilNodes; ++a) {
         const double d = g.band_slip[n0 + a];
@@ -350,7 +351,11 @@ RUNOUT_HD inline void band_softening(const ParticleView& P, int p, const St& st,
       }
     });
   }
-  if (!(weight > 0.0)) {
+  // The band's strength (an exp and a pow) only for the particles the slip
+  // reaches, and only against a finite interface: every clay band is
+  // weaker than none.
+  const double tau = interface_strength(c);
+  if (!(weight > 0.0) || (tau < INFINITY && !(band_strength(P, p, mats) < tau))) {
     P.band_rate[p] = 0.0;
     return;
   }
