@@ -29,6 +29,7 @@
 #include "runout/scene/materials.hpp"
 #include "runout/scene/scene_parser.hpp"
 #include "scene_builders.hpp"
+#include "small_case4.hpp"
 
 using namespace runout;
 
@@ -232,18 +233,13 @@ TEST(ClayBand, RemouldedPatchOnAFrictionalBaseSlipsOnItselfAndStaysAPatch) {
 
 namespace {
 
-// The small case-4 slide of tests/test_regularisation.cpp (a trapezoid
-// 24 m long and 5 m high, the case's clay and t_s, nu = 0.3) on the
-// case's 1 kPa interface, at h = 0.5 m: the travel of its whole mass's
+// The small case-4 slide (small_case4.hpp) on the case's 1 kPa
+// interface, at h = 0.5 m: the travel of its whole mass's
 // centre by 12 s, which no front block breaking away moves, as the main
 // body's toe is.
 double small_slide_travel(int ppc, bool clay_band) {
-  Scene s = load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/case4_spreading.toml");
-  s.grid.max.x() = 120.0;
-  s.materials[0].poisson_ratio = 0.3;
+  Scene s = fixtures::small_case4_scene(120.0);
   s.base.clay_band = clay_band;
-  const double top = 5.0 / std::tan(30.0 * M_PI / 180.0);
-  s.bodies[0].polygon = {{0.0, 0.0}, {24.0, 0.0}, {24.0 - top, 5.0}, {top, 5.0}};
   apply_overrides(s, 0.5, ppc);
   Simulation sim(s);
   sim.advance_to(12.0);

@@ -25,12 +25,11 @@
 #include "runout/scene/scene_parser.hpp"
 #include "runout/mpm/simulation.hpp"
 #include "scene_builders.hpp"
+#include "small_case4.hpp"
 
 using namespace runout;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A square lattice of nx x ny particles of spacing a (volume a^2), one
 // material, its lower left particle at (x0, y0).
@@ -365,13 +364,9 @@ namespace {
 // longer time step. Returns the runout at t = 12 s, well before rest but
 // after the spreading has set the front going. t_s 0: local softening.
 double small_case4_runout(double h, int ppc, double t_s, double l) {
-  Scene s = load_scene_file(std::string(RUNOUT_SOURCE_DIR) + "/scenes/case4_spreading.toml");
-  s.grid.max.x() = 80.0;
-  s.materials[0].poisson_ratio = 0.3;
+  Scene s = fixtures::small_case4_scene(80.0);
   s.materials[0].band_thickness = t_s;
   s.materials[0].nonlocal_length = t_s > 0.0 ? l : 0.0;
-  const double top = 5.0 / std::tan(30.0 * kPi / 180.0);
-  s.bodies[0].polygon = {{0.0, 0.0}, {24.0, 0.0}, {24.0 - top, 5.0}, {top, 5.0}};
   apply_overrides(s, h, ppc);
   Simulation sim(s);
   const BaseView base = sim.base().view();
