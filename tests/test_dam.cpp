@@ -18,6 +18,7 @@
 #include <string>
 
 #include "runout/dam/dam.hpp"
+#include "runout/dam/dam_output.hpp"
 #include "runout/scene/materials.hpp"
 #include "runout/scene/polygon.hpp"
 #include "runout/scene/scene_parser.hpp"
@@ -100,6 +101,16 @@ TEST(Dam, UniformSlabAcceleratesAtTheRigidBlockRate) {
   const double expected = kG * std::sin(theta * kPi / 180.0) - tau / (rho * h);
   const double a = dam.v()[200] / dam.time();
   EXPECT_NEAR(a, expected, 0.01 * expected);
+}
+
+// The mass front of history.csv: a uniform layer's mass is spread evenly
+// along it, so 95 % of it lies behind 0.95 of its length, 5 % of the
+// length behind its toe.
+TEST(Dam, MassFrontOfAUniformLayerIsAtNinetyFivePercentOfItsLength) {
+  DamSolver dam(with_elements(layer_scene(400.0, 1.0, 10.0, 2000.0, 1000.0), 37));
+  const HistoryRow row = dam_history_row(dam, dam.s().back());
+  EXPECT_NEAR(row.runout_95, -0.05 * 400.0, 1e-9);
+  EXPECT_EQ(row.runout, 0.0);
 }
 
 // A symmetric mound on [0, 2 a]: h = sqrt(2 tau (a - |x - a|) / (rho g)),

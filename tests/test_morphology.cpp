@@ -218,6 +218,26 @@ TEST(MeasureSlide, AStrayParticleFarAheadIsOutsideTheMainBody) {
   EXPECT_EQ(n.outside_mass, 0.0);
 }
 
+// The mass front: 95 % of a uniform 12.5 m layer's mass lies behind the
+// column at 95 % of its length (the 48th of 50 columns, centre 11.875 m).
+// When the front column (2 % of the mass) breaks away, the main body's toe
+// steps back a column and the mass front stays where it was.
+TEST(MeasureSlide, TheMassFrontDoesNotJumpWhenAFrontBlockBreaksAway) {
+  const Frame f = planar_frame(0.0);
+  const std::vector<Seed> body = rectangle(f, 0.0, 12.5, 2.0);
+  const SlideMorphology whole = measure_slide(make_particles(body), planar_base(0.0), kSpacing);
+  EXPECT_NEAR(whole.mass_front_s, 47.5 * kSpacing, 1e-9);
+  EXPECT_NEAR(whole.toe_s, 12.5, 1e-9);
+
+  std::vector<Seed> parted = body;
+  for (Seed& p : parted)
+    if (p.x > 12.5 - kSpacing) p.x += 20.0;
+  const SlideMorphology m = measure_slide(make_particles(parted), planar_base(0.0), kSpacing);
+  EXPECT_NEAR(m.toe_s, 12.5 - kSpacing, 1e-9);
+  EXPECT_NEAR(m.outside_mass, 0.02 * 400 * kMass, 1e-9);
+  EXPECT_EQ(m.mass_front_s, whole.mass_front_s);
+}
+
 // Two blocks 10 m (40 spacings) apart: the heavier, though the shorter, is
 // the main body, whichever comes first.
 TEST(MeasureSlide, TheHeavierOfTwoSeparateBlocksIsTheMainBody) {

@@ -35,6 +35,7 @@ RunRecord sample_record() {
   r.wall_seconds = 0.1 + 0.2;  // not a short decimal: needs all 17 digits
   r.peak_memory_mib = 6.5;
   r.runout = 12.345678901234567;
+  r.runout_95 = 11.5;
   r.stop_time = std::nan("");
   r.peak_toe_velocity = 3.25;
   r.final_length = 70.5;
@@ -55,6 +56,7 @@ TEST(RunSummary, JsonReadsBackAsWritten) {
   EXPECT_EQ(back.steps, r.steps);
   EXPECT_EQ(back.wall_seconds, r.wall_seconds);
   EXPECT_EQ(back.runout, r.runout);
+  EXPECT_EQ(back.runout_95, r.runout_95);
   EXPECT_TRUE(std::isnan(back.stop_time));  // null
   EXPECT_EQ(back.mechanism, "elongation");
   EXPECT_TRUE(back.finished());  // a blown-up run stands: not rerun
@@ -85,6 +87,11 @@ TEST(RunSummary, RefusalsNameTheKey) {
   string_runout.replace(at, string_runout.find(',', at) - at, "\"12.3\"");
   refused(string_runout, "\"runout\" is not a number");
   refused(json.substr(0, json.size() / 2), "run/summary.json: ");
+  // A summary from before the mass front was recorded still reads, without it.
+  std::string no_95 = json;
+  no_95.erase(no_95.find("  \"runout_95\""),
+              no_95.find("\n", no_95.find("  \"runout_95\"")) - no_95.find("  \"runout_95\"") + 1);
+  EXPECT_TRUE(std::isnan(parse_run_record(no_95, "s").runout_95));
 }
 
 TEST(RunSummary, RunWritesItsSummary) {
@@ -106,6 +113,11 @@ TEST(RunSummary, RunWritesItsSummary) {
   EXPECT_GT(rec.wall_seconds, 0.0);
   const study::History h = study::read_history((out / "mpm" / "history.csv").string());
   EXPECT_EQ(rec.runout, h.runout.back());
+  ASSERT_EQ(h.runout_95.size(), h.runout.size());
+  EXPECT_EQ(rec.runout_95, h.runout_95.back());
+  // 95 % of the mass lies behind the toe, whose runout is the toe's.
+  EXPECT_LT(h.runout_95.front(), 0.0);
+  EXPECT_LT(rec.runout_95, rec.runout);
   EXPECT_EQ(rec.final_length, h.length.back());
   EXPECT_EQ(rec.peak_toe_velocity, *std::max_element(h.toe_velocity.begin(), h.toe_velocity.end()));
   // Case 1 lengthens: by 6 s at these cells it is well past the rule's
@@ -119,8 +131,10 @@ TEST(RunSummary, RunWritesItsSummary) {
   const RunRecord drec = read_run_record((out / "dam").string());
   EXPECT_EQ(drec.method, "dam");
   EXPECT_EQ(drec.mechanism, "");  // no particles to classify
-  EXPECT_EQ(drec.runout,
-            study::read_history((out / "dam" / "history.csv").string()).runout.back());
+  const study::History dh = study::read_history((out / "dam" / "history.csv").string());
+  EXPECT_EQ(drec.runout, dh.runout.back());
+  EXPECT_EQ(drec.runout_95, dh.runout_95.back());
+  EXPECT_LT(drec.runout_95, drec.runout);
 
   fs::remove_all(out);
 }

@@ -34,6 +34,19 @@ HistoryRow dam_history_row(const DamSolver& dam, double initial_toe) {
     r.centroid_s += m * dam.mid(e);
     r.centroid_velocity += m * dam.element_velocity(e);
   }
+  // The mass front: each element's mass spread evenly over its length.
+  const double front_mass = kMassFrontFraction * mass;
+  double behind = 0.0;
+  r.runout_95 = r.toe - initial_toe;
+  for (int e = 0; e < n; ++e) {
+    const double m = dam.density() * dam.volume()[e];
+    if (behind + m >= front_mass) {
+      const double s0 = dam.s()[e], s1 = dam.s()[e + 1];
+      r.runout_95 = s0 + (s1 - s0) * (front_mass - behind) / m - initial_toe;
+      break;
+    }
+    behind += m;
+  }
   r.centroid_x /= mass;
   r.centroid_y /= mass;
   r.centroid_s /= mass;

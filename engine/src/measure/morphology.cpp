@@ -140,6 +140,25 @@ double toe_velocity(const Particles& P, const std::vector<Located>& located,
   return momentum / mass;
 }
 
+// The s at which the mass, summed from the rear in order of s (ties in
+// particle order, so any run gives the same), first reaches `fraction` of
+// the whole.
+double mass_quantile_s(const Particles& P, const std::vector<Located>& located,
+                       double fraction) {
+  std::vector<int> order(P.size());
+  for (int p = 0; p < P.size(); ++p) order[p] = p;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return located[a].s < located[b].s; });
+  double total = 0.0;
+  for (int p = 0; p < P.size(); ++p) total += P.mass[p];
+  double behind = 0.0;
+  for (const int p : order) {
+    behind += P.mass[p];
+    if (behind >= fraction * total) return located[p].s;
+  }
+  return located[order.back()].s;  // rounding: the front-most particle
+}
+
 void append_number(std::string& out, double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -199,6 +218,7 @@ SlideMorphology measure_slide(const Particles& P, const BaseView& base, double s
   out.toe_velocity =
       toe_velocity(P, located, in_main, out.toe_s - kToeWindowSpacings * spacing);
   out.max_thickness = sums.max_d + half;
+  out.mass_front_s = mass_quantile_s(P, located, kMassFrontFraction);
   return out;
 }
 

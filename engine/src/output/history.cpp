@@ -20,18 +20,18 @@ namespace {
 constexpr const char* kHeader =
     "time,step,dt,toe,toe_velocity,runout,rear,length,max_thickness,centroid_x,centroid_y,"
     "centroid_s,centroid_velocity,max_speed,kinetic_energy,basal_shear_force,outside_mass,"
-    "momentum_x,momentum_y,basal_fill\n";
+    "momentum_x,momentum_y,basal_fill,runout_95\n";
 
 std::string row_text(const HistoryRow& r) {
   char line[1024];
   std::snprintf(
       line, sizeof line,
       "%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-      "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+      "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
       r.time, r.step, r.dt, r.toe, r.toe_velocity, r.runout, r.rear, r.length,
       r.max_thickness, r.centroid_x, r.centroid_y, r.centroid_s, r.centroid_velocity,
       r.max_speed, r.kinetic_energy, r.basal_shear_force, r.outside_mass, r.momentum_x,
-      r.momentum_y, r.basal_fill);
+      r.momentum_y, r.basal_fill, r.runout_95);
   return line;
 }
 
@@ -95,15 +95,31 @@ std::string first_history_rows(const std::string& path, long rows) {
   return kept;
 }
 
-HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& m, double runout,
-                           double time, long step, double dt, double basal_shear_force,
-                           double basal_fill) {
+HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& m,
+                           double initial_toe, double time, long step, double dt,
+                           double basal_shear_force, double basal_fill) {
   const ParticleTotals t = particle_totals(particles);
-  return HistoryRow{time,         step,           dt,           m.toe_s,
-                    m.toe_velocity, runout,       m.rear_s,     m.length,
-                    m.max_thickness, m.centroid_x, m.centroid_y, m.centroid_s,
-                    m.centroid_velocity_s, m.max_speed, m.kinetic_energy, basal_shear_force,
-                    m.outside_mass, t.momentum_x, t.momentum_y, basal_fill};
+  return HistoryRow{time,
+                    step,
+                    dt,
+                    m.toe_s,
+                    m.toe_velocity,
+                    runout_distance(m, initial_toe),
+                    m.rear_s,
+                    m.length,
+                    m.max_thickness,
+                    m.centroid_x,
+                    m.centroid_y,
+                    m.centroid_s,
+                    m.centroid_velocity_s,
+                    m.max_speed,
+                    m.kinetic_energy,
+                    basal_shear_force,
+                    m.outside_mass,
+                    t.momentum_x,
+                    t.momentum_y,
+                    basal_fill,
+                    m.mass_front_s - initial_toe};
 }
 
 }  // namespace runout

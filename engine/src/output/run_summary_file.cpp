@@ -163,9 +163,10 @@ RunRecord make_run_record(const RunSummary& summary, const std::string& out_dir,
   r.end_time = summary.end_time;
   r.wall_seconds = summary.wall_seconds;
   r.peak_memory_mib = peak_memory_mib;
-  const study::Metrics m =
-      study::run_metrics(study::read_history((dir / "history.csv").string()), {}, summary.at_rest);
+  const study::History history = study::read_history((dir / "history.csv").string());
+  const study::Metrics m = study::run_metrics(history, {}, summary.at_rest);
   r.runout = m.runout_end;
+  r.runout_95 = history.runout_95.empty() ? kNaN : history.runout_95.back();
   r.peak_toe_velocity = m.peak_toe_velocity;
   r.final_length = m.final_length;
   r.stop_time = summary.at_rest ? summary.end_time : kNaN;
@@ -188,6 +189,7 @@ std::string to_json(const RunRecord& r) {
   add("wall_seconds", json_number(r.wall_seconds));
   add("peak_memory_mib", json_number(r.peak_memory_mib));
   add("runout", json_number(r.runout));
+  add("runout_95", json_number(r.runout_95));
   add("stop_time", json_number(r.stop_time));
   add("peak_toe_velocity", json_number(r.peak_toe_velocity));
   add("final_length", json_number(r.final_length));
@@ -217,6 +219,8 @@ RunRecord parse_run_record(std::string_view json, const std::string& source) {
   r.wall_seconds = get("wall_seconds", false).number;
   r.peak_memory_mib = get("peak_memory_mib", false).number;
   r.runout = get("runout", false).number;
+  // Summaries written before the mass front was recorded have none.
+  r.runout_95 = obj.count("runout_95") ? get("runout_95", false).number : kNaN;
   r.stop_time = get("stop_time", false).number;
   r.peak_toe_velocity = get("peak_toe_velocity", false).number;
   r.final_length = get("final_length", false).number;

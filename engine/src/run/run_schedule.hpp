@@ -422,7 +422,7 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
   const auto record = [&] {
     const Particles& P = particles();
     const SlideMorphology shape = measure_slide(P, base, spacing);
-    history.append(mpm_history_row(P, shape, runout_distance(shape, initial_toe), sim.time(),
+    history.append(mpm_history_row(P, shape, initial_toe, sim.time(),
                                    sim.steps(), sim.last_dt(), sim.basal_shear_force(),
                                    basal_fill(P, base, scene.grid.cell_size)));
     return rest.at_rest(sim.time(), shape.toe_velocity,

@@ -52,6 +52,8 @@ History parse_history(std::string_view csv, const std::string& source) {
   const int c_time = column(header, "time", source), c_step = column(header, "step", source),
             c_vel = column(header, "toe_velocity", source),
             c_run = column(header, "runout", source), c_len = column(header, "length", source);
+  const auto found_95 = std::find(header.begin(), header.end(), "runout_95");
+  const int c_run95 = found_95 == header.end() ? -1 : static_cast<int>(found_95 - header.begin());
   History h;
   for (int n = 2; std::getline(in, line); ++n) {
     if (line.empty()) continue;
@@ -65,6 +67,7 @@ History parse_history(std::string_view csv, const std::string& source) {
     h.toe_velocity.push_back(number(cells[c_vel], source, n));
     h.runout.push_back(number(cells[c_run], source, n));
     h.length.push_back(number(cells[c_len], source, n));
+    if (c_run95 >= 0) h.runout_95.push_back(number(cells[c_run95], source, n));
   }
   return h;
 }

@@ -28,6 +28,7 @@ namespace runout {
 constexpr double kMainBodyBinSpacings = 2.0;  // main-body bin width, in particle spacings
 constexpr int kMainBodyGapBins = 2;           // empty bins a run bridges
 constexpr double kToeWindowSpacings = 2.0;    // depth of the toe-velocity window, in spacings
+constexpr double kMassFrontFraction = 0.95;   // the mass front's share of the mass behind it
 
 // The base at along-base coordinate s: its point, unit tangent (towards
 // increasing s) and outward unit normal (the tangent turned +90 degrees).
@@ -59,6 +60,11 @@ struct SlideMorphology {
   double max_thickness = 0;   // [m] largest d + spacing / 2: the profile's largest thickness
   double outside_mass = 0;    // [kg/m] mass of all particles not in the main body
   // All particles:
+  // [m] the mass front: the s of the first particle, in order of s, at which
+  // the mass from the rear reaches kMassFrontFraction of the whole. Blocks
+  // that break away count with their mass, so the front does not jump when
+  // one parts, as the main body's toe does.
+  double mass_front_s = 0;
   double max_speed = 0;       // [m/s]
   double kinetic_energy = 0;  // [J/m]
 };

@@ -22,13 +22,15 @@ struct HistoryRow {
   double max_speed = 0, kinetic_energy = 0, basal_shear_force = 0, outside_mass = 0;
   double momentum_x = 0, momentum_y = 0;
   double basal_fill = NAN;  // basal_fill.hpp; NaN for the depth-averaged model
+  double runout_95 = 0;     // the mass front (morphology.hpp) past the toe at t = 0
 };
 
 // The row of an MPM run (CPU or CUDA) from its particles on the host and
-// their morphology; runout: toe displacement along the base since t = 0;
+// their morphology; initial_toe: the main body's toe at t = 0, from which
+// runout (the toe's) and runout_95 (the mass front's) are measured;
 // basal_fill: basal_fill.hpp.
 HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& shape,
-                           double runout, double time, long step, double dt,
+                           double initial_toe, double time, long step, double dt,
                            double basal_shear_force, double basal_fill);
 
 // history.csv's header and first `rows` rows (a resumed run's rows up to

@@ -23,6 +23,7 @@ struct RunRecord {
   double wall_seconds = 0;      // [s] of the run itself, output included
   double peak_memory_mib = 0;   // the process's peak resident memory (ru_maxrss)
   double runout = 0;            // [m] toe runout at the end (history.csv)
+  double runout_95 = 0;         // [m] the mass front's runout at the end; NaN: not recorded
   double stop_time = 0;         // [s] when it came to rest; NaN when it did not
   double peak_toe_velocity = 0; // [m/s] largest toe velocity of history.csv
   double final_length = 0;      // [m] main body length at the end

@@ -16,6 +16,7 @@ namespace runout::study {
 // The history.csv columns the study reads (docs/output.md).
 struct History {
   std::vector<double> time, step, toe_velocity, runout, length;
+  std::vector<double> runout_95;  // empty where the file has no such column (an older run)
 };
 
 // Throws std::runtime_error naming the source and the missing column or the
