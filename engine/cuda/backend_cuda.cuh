@@ -15,6 +15,7 @@
 #include "cuda_simulation.cuh"
 #include "runout/mpm/base.hpp"
 #include "runout/mpm/driver.hpp"
+#include "runout/mpm/nonlocal_by_elements.hpp"
 
 namespace runout {
 namespace cuda {
@@ -223,11 +224,11 @@ class CudaBackend {
   double* xi_start() const { return xi_start_.get(); }
   double* xi_local() const { return xi_local_.get(); }
   double* xi_average() const { return xi_average_.get(); }
-  // On the host: the lattice sums of nonlocal.hpp have no device version
-  // yet, so positions, volumes, materials and the increments go over and
-  // the regularised increments come back (five arrays a step, regularised
-  // runs only).
+  // On the device, element by element (nonlocal_by_elements.hpp), the
+  // spread with atomics; only the particles' box comes to the host.
   void nonlocal_average(NonlocalAverage& nonlocal, const double* in, double* out);
+  NonlocalLatticeArrays lattice_arrays(int nodes);
+  NonlocalTaps lattice_taps(const NonlocalAverage& nonlocal, int m);
   const double* nonlocal_lengths() const { return lengths_.get(); }
   const MaterialParams* materials() const { return materials_.get(); }
   StepConfig kernel_config(const StepConfig& c) const;  // the base's device arrays
@@ -262,7 +263,9 @@ class CudaBackend {
   cuda::Buffer<SpeedMax> speed_max_;
   cuda::Buffer<cuda::Sum> sum_;
   Particles host_;
-  std::vector<double> host_in_, host_out_;  // nonlocal_average's
+  cuda::Buffer<double> lattice_inc_, lattice_vol_, lattice_pass_;  // nonlocal_average's
+  cuda::Buffer<double> taps_;   // per regularised material its taps along x, then y
+  std::vector<long> taps_at_;  // where each material's start; empty: not uploaded yet
 };
 
 static_assert(Backend<CudaBackend> && CellGroupPasses<CudaBackend>);

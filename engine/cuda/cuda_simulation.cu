@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <utility>
+#include <vector>
 
 #include "backend_cuda.cuh"
 #include "runout/mpm/cuda_simulation.hpp"
@@ -268,20 +269,41 @@ CellMeanView CudaBackend::divide_cells() {
 }
 
 void CudaBackend::nonlocal_average(NonlocalAverage& nonlocal, const double* in, double* out) {
-  const ParticleView P = particles();
-  std::vector<double> x(n_), y(n_), vol(n_);
-  std::vector<int> material(n_);
-  host_in_.resize(n_);
-  host_out_.resize(n_);
-  cuda::download_array(x.data(), P.x, n_);
-  cuda::download_array(y.data(), P.y, n_);
-  cuda::download_array(vol.data(), P.vol, n_);
-  cuda::download_array(material.data(), P.material, n_);
-  cuda::download_array(host_in_.data(), in, n_);
-  nonlocal.apply({n_, x.data(), y.data(), vol.data(), material.data()}, host_in_.data(),
-                 host_out_.data());
-  RUNOUT_CUDA_CHECK(
-      cudaMemcpy(out, host_out_.data(), n_ * sizeof(double), cudaMemcpyHostToDevice));
+  RUNOUT_CUDA_CHECK(cudaMemcpy(out, in, n_ * sizeof(double), cudaMemcpyDeviceToDevice));
+  if (n_ == 0) return;
+  const ParticleBox box = bounding_box();
+  if (box.non_finite > 0) return;  // the step's guards report it
+  BaseView mirror = nonlocal.mirror();
+  if (mirror.kind == BaseKind::Polyline) {
+    mirror.px = base_px_.get();
+    mirror.py = base_py_.get();
+    mirror.ps = base_ps_.get();
+  }
+  average_by_elements(*this, nonlocal, particles(), box, mirror, in, out, cuda::AtomicAdd{});
+}
+
+NonlocalLatticeArrays CudaBackend::lattice_arrays(int nodes) {
+  lattice_inc_.reserve(nodes);
+  lattice_vol_.reserve(nodes);
+  lattice_pass_.reserve(nodes);
+  RUNOUT_CUDA_CHECK(cudaMemset(lattice_inc_.get(), 0, nodes * sizeof(double)));
+  RUNOUT_CUDA_CHECK(cudaMemset(lattice_vol_.get(), 0, nodes * sizeof(double)));
+  return {lattice_inc_.get(), lattice_vol_.get(), lattice_pass_.get()};
+}
+
+NonlocalTaps CudaBackend::lattice_taps(const NonlocalAverage& nonlocal, int m) {
+  if (taps_at_.empty()) {  // the taps depend on l alone: uploaded once
+    std::vector<double> taps;
+    for (int k = 0; k < nonlocal.materials(); ++k) {
+      const NonlocalAverage::Taps& t = nonlocal.taps(k);
+      taps_at_.push_back(static_cast<long>(taps.size()));
+      taps.insert(taps.end(), t.x.begin(), t.x.end());
+      taps.insert(taps.end(), t.y.begin(), t.y.end());
+    }
+    cuda::upload(taps_, taps.data(), taps.size());
+  }
+  const double* x = taps_.get() + taps_at_[m];
+  return {x, x + nonlocal.taps(m).x.size()};
 }
 
 StepConfig CudaBackend::kernel_config(const StepConfig& c) const {

@@ -3,26 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace runout {
 namespace {
 
 // As the MPM driver: below this a parallel region costs more than it saves.
 constexpr int kParallelMin = 4096;
-constexpr double kPi = 3.14159265358979323846;
-
-// Quadratic B-spline weights of the nodes base - 1, base, base + 1 for a
-// point at u lattice spacings from node 0, base the nearest node (de Boor;
-// the weights sum to 1 and reproduce the point's first and second moments).
-struct Spline {
-  int base;
-  double w[3];
-};
-Spline spline(double u) {
-  const int base = static_cast<int>(std::floor(u + 0.5));
-  const double t = u - base;  // in [-1/2, 1/2)
-  return {base, {0.5 * (0.5 - t) * (0.5 - t), 0.75 - t * t, 0.5 * (0.5 + t) * (0.5 + t)}};
-}
 
 std::vector<double> gaussian_taps(double spacing, double length) {
   const int reach = static_cast<int>(std::ceil(kNonlocalCutoff * length / spacing));
@@ -34,6 +21,10 @@ std::vector<double> gaussian_taps(double spacing, double length) {
   return taps;
 }
 
+int wraps(double period, double spacing) {
+  return std::max(1, static_cast<int>(std::ceil(period / spacing)));
+}
+
 // K_line of the lattice along one axis: spacing times the sum of the taps.
 double line_integral(double spacing, const std::vector<double>& taps) {
   double sum = taps[0];
@@ -41,25 +32,23 @@ double line_integral(double spacing, const std::vector<double>& taps) {
   return spacing * sum;
 }
 
-// The increment of a particle whose own increment is a and whose band
-// carries delta / t_s = band: b = delta / a is the width of the zone that
-// yields around it, measured. A band (b up to half the averaging width
-// sqrt(pi) l) remoulds by delta / t_s; a zone as wide as the average or
-// wider is diffuse yield, which no band concentrates, and remoulds by its
-// own strain a; between the two, a linear blend.
-double localised_increment(double a, double band, double t_s, double l) {
-  if (a <= 0.0) return 0.0;
-  const double x = band * t_s / (a * std::sqrt(kPi) * l);  // b / (sqrt(pi) l)
-  const double phi = std::clamp(2.0 * (1.0 - x), 0.0, 1.0);
-  return phi * band + (1.0 - phi) * a;
-}
-
 }  // namespace
 
+// The lattice's spacing along y is l / kLatticePerLength; along a
+// periodic x it is the period over a whole number of nodes no wider.
 NonlocalAverage::NonlocalAverage(std::vector<Regularisation> materials, double period, double x0,
                                  BaseView mirror)
     : materials_(std::move(materials)), period_(period), x0_(x0), mirror_(mirror) {
-  for (const auto& m : materials_) active_ = active_ || m.length > 0.0;
+  for (const auto& m : materials_) {
+    active_ = active_ || m.length > 0.0;
+    Taps t;
+    if (m.length > 0.0) {
+      const double spacing = m.length / kLatticePerLength;
+      t.y = gaussian_taps(spacing, m.length);
+      t.x = period_ > 0.0 ? gaussian_taps(period_ / wraps(period_, spacing), m.length) : t.y;
+    }
+    taps_.push_back(std::move(t));
+  }
 }
 
 std::vector<double> NonlocalAverage::lengths() const {
@@ -71,7 +60,7 @@ std::vector<double> NonlocalAverage::lengths() const {
 // sum_j N_j(s) sum_i w((j - i) d) N_i(s) with d = spacing / l: the centre
 // value of a thin band through s after spreading, convolving and taking back.
 double NonlocalAverage::band_peak(double spacing_over_length, double s) {
-  const Spline sp = spline(s);
+  const LatticeSpline sp = lattice_spline(s);
   double peak = 0;
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
@@ -89,9 +78,10 @@ double NonlocalAverage::band_peak(double spacing_over_length, double s) {
 // and rows that are zero are skipped whole. Adding the zeros left out
 // changed no sum, and each output is summed in the same order whatever the
 // threads, which split the rows.
-void NonlocalAverage::convolve(std::vector<double>& field, const Axis& ax, const Axis& ay) {
+void NonlocalAverage::convolve(std::vector<double>& field, const LatticeAxis& ax,
+                               const LatticeAxis& ay) {
   const int nx = ax.count, ny = ay.count;
-  const int rx = static_cast<int>(ax.taps.size()) - 1, ry = static_cast<int>(ay.taps.size()) - 1;
+  const int rx = ax.reach, ry = ay.reach;
   pass_.assign(field.size(), 0.0);
   spans_.assign(ny, Span{});
 #pragma omp parallel for schedule(static) if (nx * ny > kParallelMin)
@@ -134,57 +124,49 @@ void NonlocalAverage::convolve(std::vector<double>& field, const Axis& ax, const
 // The lattice over the points' box and the kernel's reach; along x the
 // period where the scene is periodic (a whole number of spacings, so the
 // lattice closes on itself).
-void NonlocalAverage::fit_lattice(double l, double xmin, double xmax, double ymin, double ymax) {
-  ay_ = Axis{};
-  ay_.spacing = l / kLatticePerLength;
-  ay_.taps = gaussian_taps(ay_.spacing, l);
-  const int reach = static_cast<int>(ay_.taps.size()) - 1;
-  ay_.first = static_cast<int>(std::floor(ymin / ay_.spacing + 0.5)) - 1 - reach;
-  ay_.count = static_cast<int>(std::floor(ymax / ay_.spacing + 0.5)) + 2 + reach - ay_.first;
-  ax_ = Axis{};
+NonlocalLattice NonlocalAverage::lattice(int m, double xmin, double xmax, double ymin,
+                                 double ymax) const {
+  const Taps& t = taps_[m];
+  NonlocalLattice g;
+  g.x0 = x0_;
+  g.ay.spacing = materials_[m].length / kLatticePerLength;
+  g.ay.reach = static_cast<int>(t.y.size()) - 1;
+  g.ay.taps = t.y.data();
+  const int reach = g.ay.reach;
+  g.ay.first = static_cast<int>(std::floor(ymin / g.ay.spacing + 0.5)) - 1 - reach;
+  g.ay.count = static_cast<int>(std::floor(ymax / g.ay.spacing + 0.5)) + 2 + reach - g.ay.first;
+  g.ax.reach = static_cast<int>(t.x.size()) - 1;
+  g.ax.taps = t.x.data();
   if (period_ > 0.0) {
-    ax_.wrap = std::max(1, static_cast<int>(std::ceil(period_ / ay_.spacing)));
-    ax_.spacing = period_ / ax_.wrap;
-    ax_.count = ax_.wrap;
-    ax_.taps = gaussian_taps(ax_.spacing, l);
+    g.ax.wrap = wraps(period_, g.ay.spacing);
+    g.ax.spacing = period_ / g.ax.wrap;
+    g.ax.count = g.ax.wrap;
   } else {
-    ax_.spacing = ay_.spacing;
-    ax_.taps = ay_.taps;
-    ax_.first = static_cast<int>(std::floor(xmin / ax_.spacing + 0.5)) - 1 - reach;
-    ax_.count = static_cast<int>(std::floor(xmax / ax_.spacing + 0.5)) + 2 + reach - ax_.first;
+    g.ax.spacing = g.ay.spacing;
+    g.ax.first = static_cast<int>(std::floor(xmin / g.ax.spacing + 0.5)) - 1 - reach;
+    g.ax.count = static_cast<int>(std::floor(xmax / g.ax.spacing + 0.5)) + 2 + reach - g.ax.first;
   }
-  const std::size_t size = static_cast<std::size_t>(ax_.count) * ay_.count;
-  increments_.assign(size, 0.0);
-  volumes_.assign(size, 0.0);
+  if (static_cast<double>(g.ax.count) * g.ay.count > std::numeric_limits<int>::max())
+    throw std::runtime_error("the nonlocal average's lattice would have more than 2^31 nodes");
+  return g;
 }
 
-template <class F>
-void NonlocalAverage::for_nodes(double x, double y, F&& f) const {
-  const Spline sx = spline((x - (period_ > 0.0 ? x0_ : 0.0)) / ax_.spacing);
-  const Spline sy = spline(y / ay_.spacing);
-  for (int b = 0; b < 3; ++b) {
-    const std::size_t row = static_cast<std::size_t>(ay_.node(sy.base - 1 + b)) * ax_.count;
-    for (int a = 0; a < 3; ++a) f(row + ax_.node(sx.base - 1 + a), sy.w[b] * sx.w[a]);
-  }
-}
-
-// Where p's image across a no-slip base lies, if within the kernel's
-// reach: a band along such a base keeps the whole kernel across it (the
-// images' volume, not their increments, enters the weights).
-bool NonlocalAverage::mirror_point(double x, double y, double reach, double& mx,
-                                   double& my) const {
-  if (mirror_.kind == BaseKind::None) return false;
-  const BasePoint b = locate_on_base(mirror_, x, y);
-  if (b.d < 0.0 || b.d > reach) return false;
-  mx = x - 2.0 * b.d * b.nx;
-  my = y - 2.0 * b.d * b.ny;
-  return true;
+// Taken back: sum w V dxi / sum w V is the normalised average, times the
+// weight a point deep inside the body has, K_x K_y, is the integral of
+// the kernel over the increments as if the body went on all round; over
+// t_s K_line, and the lattice's own factor for a thin band, it is
+// delta / t_s.
+double NonlocalAverage::band_scale(int m) const {
+  const Regularisation& reg = materials_[m];
+  const double l = reg.length, spacing = l / kLatticePerLength;
+  const double spacing_x = period_ > 0.0 ? period_ / wraps(period_, spacing) : spacing;
+  const double kx = line_integral(spacing_x, taps_[m].x), ky = line_integral(spacing, taps_[m].y);
+  return kx * ky / (reg.band_thickness * kx * band_peak(spacing / l, 0.0));
 }
 
 void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in, double* out,
                                        int material) {
-  const Regularisation& reg = materials_[material];
-  const double l = reg.length, reach = kNonlocalCutoff * l;
+  const double reach = image_reach(material);
   // The box of the material's particles and their images, split over the
   // threads (min and max reduce in any order to the same bits); each
   // particle's image is kept at its own index (vol 0: none; no array
@@ -203,7 +185,7 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
     ymax = std::max(ymax, P.y[p]);
     if (!mirrored) continue;
     Image& image = images_[p];
-    if (mirror_point(P.x[p], P.y[p], reach, image.x, image.y)) {
+    if (base_image(mirror_, P.x[p], P.y[p], reach, image.x, image.y)) {
       image.vol = P.vol[p];
       xmin = std::min(xmin, image.x);
       xmax = std::max(xmax, image.x);
@@ -212,48 +194,34 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
     }
   }
   if (!(xmin <= xmax)) return;
-  fit_lattice(l, xmin, xmax, ymin, ymax);
+  const NonlocalLattice g = lattice(material, xmin, xmax, ymin, ymax);
+  increments_.assign(g.size(), 0.0);
+  volumes_.assign(g.size(), 0.0);
 
   // Spread V dxi and V (with the images' V), in particle order.
   for (int p = 0; p < P.n; ++p) {
     if (P.material[p] != material) continue;
     const double v = P.vol[p], va = P.vol[p] * in[p];
     if (va > 0.0)
-      for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) {
+      g.for_nodes(P.x[p], P.y[p], [&](int k, double w) {
         increments_[k] += w * va;
         volumes_[k] += w * v;
       });
     else
-      for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) { volumes_[k] += w * v; });
+      g.for_nodes(P.x[p], P.y[p], [&](int k, double w) { volumes_[k] += w * v; });
   }
   for (const Image& image : images_)
     if (image.vol > 0.0)
-      for_nodes(image.x, image.y, [&](std::size_t k, double w) { volumes_[k] += w * image.vol; });
-  convolve(increments_, ax_, ay_);
-  convolve(volumes_, ax_, ay_);
+      g.for_nodes(image.x, image.y, [&](int k, double w) { volumes_[k] += w * image.vol; });
+  convolve(increments_, g.ax, g.ay);
+  convolve(volumes_, g.ax, g.ay);
 
-  // Taken back: sum w V dxi / sum w V is the normalised average, times the
-  // weight a point deep inside the body has, K_x K_y, is the integral of
-  // the kernel over the increments as if the body went on all round; over
-  // t_s K_line, and the lattice's own factor for a thin band, it is
-  // delta / t_s.
-  const double kx = line_integral(ax_.spacing, ax_.taps), ky = line_integral(ay_.spacing, ay_.taps);
-  const double scale = kx * ky / (reg.band_thickness * kx * band_peak(ay_.spacing / l, 0.0));
+  const Regularisation& reg = materials_[material];
+  const GatherBand gather{g,      increments_.data(), volumes_.data(), P.x,
+                          P.y,    P.material,         in,              out,
+                          material, band_scale(material), reg.band_thickness, reg.length};
 #pragma omp parallel for schedule(static) if (P.n > kParallelMin)
-  for (int p = 0; p < P.n; ++p) {
-    if (P.material[p] != material) continue;
-    if (in[p] <= 0.0) {  // a particle that does not yield does not soften
-      out[p] = 0.0;
-      continue;
-    }
-    double sum = 0, weight = 0;
-    for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) {
-      sum += w * increments_[k];
-      weight += w * volumes_[k];
-    });
-    const double band = weight > 0.0 ? scale * sum / weight : 0.0;
-    out[p] = localised_increment(in[p], band, reg.band_thickness, l);
-  }
+  for (int p = 0; p < P.n; ++p) gather(p);
 }
 
 void NonlocalAverage::apply(const NonlocalPoints& P, const double* in, double* out) {

@@ -6,9 +6,11 @@
 // every step (a stable sort, as CUB's radix sort), each pass computes the
 // stencil afresh instead of storing it, a scatter adds each particle's
 // shares straight to the nodes with no colouring (atomics on the GPU, in
-// particle order here), and the cell means are sums scattered by particle.
+// particle order here), the cell means are sums scattered by particle, and
+// the nonlocal average goes element by element (nonlocal_by_elements.hpp).
 // Only the order of the additions differs from the GPU's, so results
 // agree with the OpenMP backend's to rounding, not bit for bit.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -16,6 +18,7 @@
 
 #include "runout/mpm/backend_concept.hpp"
 #include "runout/mpm/backend_host.hpp"
+#include "runout/mpm/nonlocal_by_elements.hpp"
 
 namespace runout {
 
@@ -114,6 +117,23 @@ class SerialDeviceBackend : public HostBackend {
   SpeedMax for_cell_groups(const GridView&, const StepConfig&, F&& f) {
     return f(*this);
   }
+  void nonlocal_average(NonlocalAverage& nonlocal, const double* in, double* out) {
+    const ParticleView P = particles_.view();
+    std::copy_n(in, P.n, out);
+    const ParticleBox box = bounding_box();
+    if (P.n == 0 || box.non_finite > 0) return;  // the step's guards report it
+    average_by_elements(*this, nonlocal, P, box, nonlocal.mirror(), in, out, PlainAdd{});
+  }
+  NonlocalLatticeArrays lattice_arrays(int nodes) {
+    lattice_increments_.assign(nodes, 0.0);
+    lattice_volumes_.assign(nodes, 0.0);
+    lattice_pass_.resize(nodes);
+    return {lattice_increments_.data(), lattice_volumes_.data(), lattice_pass_.data()};
+  }
+  NonlocalTaps lattice_taps(const NonlocalAverage& nonlocal, int m) const {
+    return {nonlocal.taps(m).x.data(), nonlocal.taps(m).y.data()};
+  }
+
   // The one cell group's L and displacements: every particle's.
   GradientView gradients() { return {lxx_.data(), lxy_.data(), lyx_.data(), lyy_.data()}; }
   StepScratch scratch() { return {dx_.data(), dy_.data()}; }
@@ -137,6 +157,7 @@ class SerialDeviceBackend : public HostBackend {
   std::vector<int> cell_;  // each (sorted) particle's cell in the grid box
   StaggeredArray dx_, dy_, lxx_, lxy_, lyx_, lyy_;
   StaggeredArray cell_volume_, cell_mean_;  // per cell of the grid box
+  std::vector<double> lattice_increments_, lattice_volumes_, lattice_pass_;  // nonlocal_average's
 };
 
 static_assert(Backend<SerialDeviceBackend> && CellGroupPasses<SerialDeviceBackend>);

@@ -24,7 +24,7 @@
 // b = l / 2). The band's width is then measured, b = delta / a_p, rather
 // than assumed: a zone that yields over the averaging width or more is
 // diffuse yield, which no band concentrates, and keeps its own strain
-// (localised_increment in nonlocal.cpp). The normalisation keeps a band
+// (localised_increment in nonlocal_lattice.hpp). The normalisation keeps a band
 // that ends at a free surface whole up to the surface; a band along a
 // no-slip base, where the clay's shear gathers, keeps the whole kernel
 // across it by the volumes of the particles' images in the base (the
@@ -41,10 +41,13 @@
 // lattice nodes (5 % with linear weights); the lattice is fixed in space,
 // its spacing set by l, not by the cell. It wraps along x in a periodic
 // scene. The sums run in a fixed order, so the result does not depend on
-// the number of threads.
+// the number of threads. The CUDA backend takes the same lattice
+// (lattice()) and the element-wise stages of nonlocal_lattice.hpp on the
+// device.
 #include <vector>
 
 #include "runout/mpm/base.hpp"
+#include "runout/mpm/nonlocal_lattice.hpp"
 
 namespace runout {
 
@@ -84,28 +87,31 @@ class NonlocalAverage {
   // operator's own factor, which apply divides out at s = 0.
   static double band_peak(double spacing_over_length, double s);
 
- private:
-  struct Axis {
-    double spacing = 0;        // [m]
-    int first = 0, count = 0;  // lattice indices first .. first + count - 1
-    int wrap = 0;              // > 0: indices modulo wrap (periodic)
-    std::vector<double> taps;  // w at 0, 1, 2, ... spacings
-    int node(int i) const {    // the storage column of lattice index i
-      return wrap > 0 ? ((i % wrap) + wrap) % wrap : i - first;
-    }
+  // For a backend that averages on its own (CUDA): material m's settings,
+  // the lattice over a box that holds its particles and their images (the
+  // taps point into this object), how far above the base a particle has an
+  // image, and the factor that turns the normalised average into
+  // delta / t_s.
+  const Regularisation& regularisation(int m) const { return materials_[m]; }
+  int materials() const { return static_cast<int>(materials_.size()); }
+  const BaseView& mirror() const { return mirror_; }
+  NonlocalLattice lattice(int m, double xmin, double xmax, double ymin, double ymax) const;
+  double image_reach(int m) const { return kNonlocalCutoff * materials_[m].length; }
+  double band_scale(int m) const;
+  struct Taps {
+    std::vector<double> x, y;  // w at 0, 1, 2, ... spacings along each axis
   };
-  void fit_lattice(double l, double xmin, double xmax, double ymin, double ymax);
-  template <class F>
-  void for_nodes(double x, double y, F&& f) const;  // f(lattice index, weight)
-  bool mirror_point(double x, double y, double reach, double& mx, double& my) const;
-  void convolve(std::vector<double>& field, const Axis& ax, const Axis& ay);
+  const Taps& taps(int m) const { return taps_[m]; }  // empty where m is not regularised
+
+ private:
+  void convolve(std::vector<double>& field, const LatticeAxis& ax, const LatticeAxis& ay);
   void average_material(const NonlocalPoints& P, const double* in, double* out, int material);
 
   std::vector<Regularisation> materials_;
+  std::vector<Taps> taps_;  // per material
   double period_, x0_;
   BaseView mirror_;
   bool active_ = false;
-  Axis ax_, ay_;
   std::vector<double> increments_, volumes_, pass_;  // the spread V a and V, and the x pass
   struct Span {
     int first = 0, last = 0;  // the columns [first, last) of a row of the x pass that are not zero
