@@ -167,20 +167,10 @@ namespace {
 
 // A backend for average_by_elements on the host that runs every stage in
 // reverse order (the device's atomics take the particles in any order).
-struct ReversedBackend {
-  std::vector<double> increments, volumes, pass;
+struct ReversedBackend : HostNonlocalLattice {
   template <class Stage>
   void for_each(int count, Stage stage) {
     for (int i = count - 1; i >= 0; --i) stage(i);
-  }
-  NonlocalLatticeArrays lattice_arrays(int nodes) {
-    increments.assign(nodes, 0.0);
-    volumes.assign(nodes, 0.0);
-    pass.resize(nodes);
-    return {increments.data(), volumes.data(), pass.data()};
-  }
-  NonlocalTaps lattice_taps(const NonlocalAverage& avg, int m) const {
-    return {avg.taps(m).x.data(), avg.taps(m).y.data()};
   }
 };
 

@@ -22,7 +22,7 @@
 
 namespace runout {
 
-class SerialDeviceBackend : public HostBackend {
+class SerialDeviceBackend : public HostBackend, public HostNonlocalLattice {
  public:
   SerialDeviceBackend(Particles particles, const std::vector<MaterialParams>& materials,
                       const Base&, const std::vector<double>& nonlocal_lengths)
@@ -124,15 +124,6 @@ class SerialDeviceBackend : public HostBackend {
     if (P.n == 0 || box.non_finite > 0) return;  // the step's guards report it
     average_by_elements(*this, nonlocal, P, box, nonlocal.mirror(), in, out, PlainAdd{});
   }
-  NonlocalLatticeArrays lattice_arrays(int nodes) {
-    lattice_increments_.assign(nodes, 0.0);
-    lattice_volumes_.assign(nodes, 0.0);
-    lattice_pass_.resize(nodes);
-    return {lattice_increments_.data(), lattice_volumes_.data(), lattice_pass_.data()};
-  }
-  NonlocalTaps lattice_taps(const NonlocalAverage& nonlocal, int m) const {
-    return {nonlocal.taps(m).x.data(), nonlocal.taps(m).y.data()};
-  }
 
   // The one cell group's L and displacements: every particle's.
   GradientView gradients() { return {lxx_.data(), lxy_.data(), lyx_.data(), lyy_.data()}; }
@@ -157,7 +148,6 @@ class SerialDeviceBackend : public HostBackend {
   std::vector<int> cell_;  // each (sorted) particle's cell in the grid box
   StaggeredArray dx_, dy_, lxx_, lxy_, lyx_, lyy_;
   StaggeredArray cell_volume_, cell_mean_;  // per cell of the grid box
-  std::vector<double> lattice_increments_, lattice_volumes_, lattice_pass_;  // nonlocal_average's
 };
 
 static_assert(Backend<SerialDeviceBackend> && CellGroupPasses<SerialDeviceBackend>);

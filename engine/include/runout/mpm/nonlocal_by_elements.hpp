@@ -12,6 +12,8 @@
 //     taps (NonlocalAverage::taps) where its stages can read them.
 // out must hold in already: only the regularised materials' particles are
 // overwritten.
+#include <vector>
+
 #include "runout/mpm/nonlocal.hpp"
 #include "runout/mpm/particles.hpp"
 #include "runout/mpm/step_views.hpp"
@@ -24,6 +26,24 @@ struct NonlocalLatticeArrays {
 
 struct NonlocalTaps {
   const double *x, *y;
+};
+
+// The lattice's arrays and taps for a backend that averages by elements on
+// the CPU.
+class HostNonlocalLattice {
+ public:
+  NonlocalLatticeArrays lattice_arrays(int nodes) {
+    increments_.assign(nodes, 0.0);
+    volumes_.assign(nodes, 0.0);
+    pass_.resize(nodes);
+    return {increments_.data(), volumes_.data(), pass_.data()};
+  }
+  NonlocalTaps lattice_taps(const NonlocalAverage& nonlocal, int m) const {
+    return {nonlocal.taps(m).x.data(), nonlocal.taps(m).y.data()};
+  }
+
+ private:
+  std::vector<double> increments_, volumes_, pass_;
 };
 
 // box: of every particle (a superset of each material's); mirror: the
