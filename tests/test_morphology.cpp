@@ -1,6 +1,6 @@
 // The slide's shape and motion along the base (morphology.hpp) on particle
-// sets built by hand with known geometry, and locate_on_base (base.hpp)
-// itself.
+// sets built by hand with known geometry, locate_on_base (base.hpp)
+// itself, and the at-rest test that reads them (rest_detector.hpp).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -16,6 +16,7 @@
 #include "runout/measure/basal_fill.hpp"
 #include "runout/measure/morphology.hpp"
 #include "runout/mpm/base.hpp"
+#include "runout/run/rest_detector.hpp"
 
 namespace fs = std::filesystem;
 using namespace runout;
@@ -236,6 +237,42 @@ TEST(MeasureSlide, TheMassFrontDoesNotJumpWhenAFrontBlockBreaksAway) {
   EXPECT_NEAR(m.toe_s, 12.5 - kSpacing, 1e-9);
   EXPECT_NEAR(m.outside_mass, 0.02 * 400 * kMass, 1e-9);
   EXPECT_EQ(m.mass_front_s, whole.mass_front_s);
+}
+
+// A heavy block at rest and a light one 10 m ahead of it moving at 2 m/s:
+// the blocks' speed is 2 sqrt(m_light / M), though the main body (the heavy
+// block) is still. Noise inside a block (alternate particles at +-1 m/s)
+// carries no mean momentum and adds nothing.
+TEST(MeasureSlide, TheBlocksSpeedSeesABlockThatRunsOnAndNotNoise) {
+  const Frame f = planar_frame(0.0);
+  std::vector<Seed> heavy = rectangle(f, 0.0, 6.0, 2.0);
+  std::vector<Seed> light = rectangle(f, 16.0, 18.0, 2.0);
+  for (Seed& p : light) p.vx = 2.0;
+  const double share = static_cast<double>(light.size()) / (heavy.size() + light.size());
+  const SlideMorphology m =
+      measure_slide(make_particles(joined(heavy, light)), planar_base(0.0), kSpacing);
+  EXPECT_NEAR(m.toe_s, 6.0, 1e-9);  // the main body: the heavy block
+  EXPECT_EQ(m.toe_velocity, 0.0);
+  EXPECT_NEAR(m.block_speed, 2.0 * std::sqrt(share), 1e-12);
+
+  for (std::size_t p = 0; p < heavy.size(); ++p) heavy[p].vx = p % 2 == 0 ? 1.0 : -1.0;
+  const SlideMorphology noisy = measure_slide(make_particles(heavy), planar_base(0.0), kSpacing);
+  EXPECT_GT(noisy.max_speed, 0.99);
+  EXPECT_NEAR(noisy.block_speed, 0.0, 1e-12);
+}
+
+// The at-rest test: the main body's toe and mean speed have fallen to zero,
+// but a block that broke away still runs: not at rest until it stops too,
+// and then only after rest_duration.
+TEST(RestDetector, ABlockThatRunsOnKeepsTheRunGoing) {
+  RestDetector rest(1e-3, 2.0);
+  EXPECT_FALSE(rest.at_rest(0.0, 5.0, 4.0, 3.0));  // the peak: 25 (m/s)^2
+  for (double t = 1.0; t <= 10.0; t += 1.0) EXPECT_FALSE(rest.at_rest(t, 0.0, 0.0, 1.0)) << t;
+  EXPECT_FALSE(rest.at_rest(11.0, 0.0, 0.0, 0.1));  // 0.01 < 0.025: rest starts
+  EXPECT_FALSE(rest.at_rest(12.0, 0.0, 0.0, 0.1));
+  EXPECT_TRUE(rest.at_rest(13.0, 0.0, 0.0, 0.1));
+  EXPECT_EQ(rest.since(), 11.0);
+  EXPECT_EQ(rest.peak(), 25.0);
 }
 
 // Two blocks 10 m (40 spacings) apart: the heavier, though the shorter, is

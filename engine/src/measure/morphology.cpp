@@ -104,6 +104,27 @@ BinRange heaviest_run(const std::vector<BinTotals>& bins, int gap_bins) {
   return best;
 }
 
+// sqrt(sum over the runs of (their momentum along s)^2 / their mass, over
+// the whole mass), the runs as heaviest_run bridges them.
+double block_speed(const std::vector<BinTotals>& bins, int gap_bins) {
+  double energy = 0.0, mass = 0.0, run_mass = 0.0, run_momentum = 0.0;
+  int last = -1;
+  const auto close_run = [&] {
+    if (run_mass > 0.0) energy += run_momentum * run_momentum / run_mass;
+    run_mass = run_momentum = 0.0;
+  };
+  for (int k = 0; k < static_cast<int>(bins.size()); ++k) {
+    if (bins[k].particles == 0) continue;
+    if (last >= 0 && k - last - 1 > gap_bins) close_run();
+    last = k;
+    run_mass += bins[k].mass;
+    run_momentum += bins[k].momentum_s;
+    mass += bins[k].mass;
+  }
+  close_run();
+  return mass > 0.0 ? std::sqrt(energy / mass) : 0.0;
+}
+
 // Running sums over the main body; divided by its mass at the end.
 struct MainBodySums {
   int particles = 0;
@@ -187,7 +208,9 @@ SlideMorphology measure_slide(const Particles& P, const BaseView& base, double s
 
   const std::vector<Located> located = locate_particles(P, base);
   const Binning binning = binning_over(located, kMainBodyBinSpacings * spacing);
-  const BinRange main = heaviest_run(bin_totals(P, located, binning), kMainBodyGapBins);
+  const std::vector<BinTotals> bins = bin_totals(P, located, binning);
+  const BinRange main = heaviest_run(bins, kMainBodyGapBins);
+  out.block_speed = block_speed(bins, kMainBodyGapBins);
 
   MainBodySums sums;
   std::vector<bool> in_main(P.size());

@@ -56,11 +56,11 @@ RunSummary run_dam(const Scene& scene, const RunOptions& options) {
   const auto record = [&] {
     const HistoryRow row = dam_history_row(dam, initial_toe);
     history.append(row);
-    return rest.at_rest(row.time, row.toe_velocity, row.centroid_velocity);
+    return rest.at_rest(row.time, row.toe_velocity, row.centroid_velocity, 0.0);  // one layer, one block
   };
   const auto at_rest = [&] {
     const HistoryRow row = dam_history_row(dam, initial_toe);
-    return rest.at_rest(row.time, row.toe_velocity, row.centroid_velocity);
+    return rest.at_rest(row.time, row.toe_velocity, row.centroid_velocity, 0.0);  // one layer, one block
   };
   run_schedule(dam, {.scene = scene,
                      .options = options,

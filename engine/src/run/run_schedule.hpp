@@ -22,6 +22,7 @@
 #include "runout/measure/basal_fill.hpp"
 #include "runout/measure/morphology.hpp"
 #include "runout/run/run.hpp"
+#include "runout/run/rest_detector.hpp"
 #include "runout/run/run_control.hpp"
 #include "runout/output/run_summary_file.hpp"
 #include "runout/scene/scene_parser.hpp"
@@ -73,39 +74,6 @@ inline std::vector<double> base_polyline(const Scene& s) {
   }
   return xy;
 }
-
-// Ends the run once the slide's bulk motion has stayed below fraction x its
-// peak for `duration` seconds (scene time.rest_*). The bulk motion is the
-// larger of the toe's speed along the base and the speed of the slide's
-// mass-weighted mean velocity (momentum / mass), measured as an energy (the
-// speed squared), so rest_fraction keeps its meaning of a kinetic-energy
-// share. Not the total kinetic
-// energy: grid-scale noise next to a no-slip base carries 1 to 3 % of the
-// peak energy in a slide that has stopped (docs/convergence.md, "At rest")
-// but no mean momentum, and the toe and centroid speeds average it out.
-class RestDetector {
- public:
-  // peak and since: where a checkpointed detector stood.
-  RestDetector(double fraction, double duration, double peak = 0.0, double since = -1.0)
-      : fraction_(fraction), duration_(duration), peak_(peak), since_(since) {}
-  double peak() const { return peak_; }
-  double since() const { return since_; }
-  bool at_rest(double time, double toe_speed, double mean_speed) {
-    if (fraction_ <= 0.0) return false;
-    const double bulk = std::max(toe_speed * toe_speed, mean_speed * mean_speed);
-    peak_ = std::max(peak_, bulk);
-    if (peak_ <= 0.0 || bulk >= fraction_ * peak_) {
-      since_ = -1.0;
-      return false;
-    }
-    if (since_ < 0.0) since_ = time;
-    return time - since_ >= duration_;
-  }
-
- private:
-  double fraction_, duration_;
-  double peak_, since_;
-};
 
 using Clock = std::chrono::steady_clock;
 
@@ -426,12 +394,12 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
                                    sim.steps(), sim.last_dt(), sim.basal_shear_force(),
                                    basal_fill(P, base, scene.grid.cell_size)));
     return rest.at_rest(sim.time(), shape.toe_velocity,
-                        std::hypot(shape.centroid_vx, shape.centroid_vy));
+                        std::hypot(shape.centroid_vx, shape.centroid_vy), shape.block_speed);
   };
   const auto at_rest = [&] {
     const SlideMorphology shape = measure_slide(particles(), base, spacing);
     return rest.at_rest(sim.time(), shape.toe_velocity,
-                        std::hypot(shape.centroid_vx, shape.centroid_vy));
+                        std::hypot(shape.centroid_vx, shape.centroid_vy), shape.block_speed);
   };
 
   const long every =

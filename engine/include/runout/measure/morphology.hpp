@@ -65,6 +65,13 @@ struct SlideMorphology {
   // that break away count with their mass, so the front does not jump when
   // one parts, as the main body's toe does.
   double mass_front_s = 0;
+  // [m/s] the blocks' bulk speed: sqrt(sum_b m_b u_b^2 / M) over the
+  // blocks b (the runs of occupied bins that the main body is chosen from,
+  // the main body one of them), u_b a block's mass-weighted mean velocity
+  // along the base. A block that runs on after the main body has stopped
+  // shows in it; noise inside a block, which carries no mean momentum,
+  // does not.
+  double block_speed = 0;
   double max_speed = 0;       // [m/s]
   double kinetic_energy = 0;  // [J/m]
 };
