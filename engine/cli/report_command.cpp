@@ -45,6 +45,7 @@ std::string result_section(const RunRecord& r, const Scene& scene) {
       {"simulated time", html::number(r.end_time) + " s"},
       {"at rest at", stop},
       {"runout", html::number(r.runout) + " m"},
+      {"runout of 95 % of the mass", html::number(r.runout_95) + " m"},
       {"peak toe velocity", html::number(r.peak_toe_velocity) + " m/s"},
       {"final length", html::number(r.final_length) + " m"},
       {"mechanism", r.mechanism.empty() ? "not classified" : r.mechanism},
