@@ -70,7 +70,7 @@ class AnalyseAgainstFilters : public ::testing::Test {
 runout::cli_runner::CoarseRun* AnalyseAgainstFilters::run_ = nullptr;
 
 std::string numbered(const char* stem, std::size_t k) {
-  char name[32];
+  char name[64];
   std::snprintf(name, sizeof name, "%s_%05zu.csv", stem, k);
   return name;
 }
