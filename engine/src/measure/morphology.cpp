@@ -79,49 +79,46 @@ struct BinRange {
   bool contains(int k) const { return first <= k && k <= last; }
 };
 
-// The heaviest run of occupied bins, runs bridging up to gap_bins empty
-// bins; the first (rear-most) of equally heavy runs.
-BinRange heaviest_run(const std::vector<BinTotals>& bins, int gap_bins) {
-  BinRange best, run;
-  double best_mass = -1.0, run_mass = 0.0;
-  auto close_run = [&] {
-    if (run.last >= run.first && run_mass > best_mass) {
-      best = run;
-      best_mass = run_mass;
-    }
-  };
+// The runs of occupied bins, rear to front, each bridging up to gap_bins
+// empty bins: the main body and any blocks that have broken away.
+std::vector<BinRange> occupied_runs(const std::vector<BinTotals>& bins, int gap_bins) {
+  std::vector<BinRange> runs;
   for (int k = 0; k < static_cast<int>(bins.size()); ++k) {
     if (bins[k].particles == 0) continue;
-    if (run.last < run.first || k - run.last - 1 > gap_bins) {
-      close_run();
-      run = BinRange{k, k};
-      run_mass = 0.0;
-    }
-    run.last = k;
-    run_mass += bins[k].mass;
+    if (runs.empty() || k - runs.back().last - 1 > gap_bins) runs.push_back(BinRange{k, k});
+    runs.back().last = k;
   }
-  close_run();
+  return runs;
+}
+
+// The heaviest run; the first (rear-most) of equally heavy runs.
+BinRange heaviest_run(const std::vector<BinTotals>& bins, const std::vector<BinRange>& runs) {
+  BinRange best;
+  double best_mass = -1.0;
+  for (const BinRange& run : runs) {
+    double mass = 0.0;
+    for (int k = run.first; k <= run.last; ++k) mass += bins[k].mass;
+    if (mass > best_mass) {
+      best = run;
+      best_mass = mass;
+    }
+  }
   return best;
 }
 
 // sqrt(sum over the runs of (their momentum along s)^2 / their mass, over
-// the whole mass), the runs as heaviest_run bridges them.
-double block_speed(const std::vector<BinTotals>& bins, int gap_bins) {
-  double energy = 0.0, mass = 0.0, run_mass = 0.0, run_momentum = 0.0;
-  int last = -1;
-  const auto close_run = [&] {
-    if (run_mass > 0.0) energy += run_momentum * run_momentum / run_mass;
-    run_mass = run_momentum = 0.0;
-  };
-  for (int k = 0; k < static_cast<int>(bins.size()); ++k) {
-    if (bins[k].particles == 0) continue;
-    if (last >= 0 && k - last - 1 > gap_bins) close_run();
-    last = k;
-    run_mass += bins[k].mass;
-    run_momentum += bins[k].momentum_s;
-    mass += bins[k].mass;
+// the whole mass).
+double block_speed(const std::vector<BinTotals>& bins, const std::vector<BinRange>& runs) {
+  double energy = 0.0, mass = 0.0;
+  for (const BinRange& run : runs) {
+    double run_mass = 0.0, run_momentum = 0.0;
+    for (int k = run.first; k <= run.last; ++k) {
+      run_mass += bins[k].mass;
+      run_momentum += bins[k].momentum_s;
+      mass += bins[k].mass;
+    }
+    energy += run_momentum * run_momentum / run_mass;
   }
-  close_run();
   return mass > 0.0 ? std::sqrt(energy / mass) : 0.0;
 }
 
@@ -209,8 +206,9 @@ SlideMorphology measure_slide(const Particles& P, const BaseView& base, double s
   const std::vector<Located> located = locate_particles(P, base);
   const Binning binning = binning_over(located, kMainBodyBinSpacings * spacing);
   const std::vector<BinTotals> bins = bin_totals(P, located, binning);
-  const BinRange main = heaviest_run(bins, kMainBodyGapBins);
-  out.block_speed = block_speed(bins, kMainBodyGapBins);
+  const std::vector<BinRange> runs = occupied_runs(bins, kMainBodyGapBins);
+  const BinRange main = heaviest_run(bins, runs);
+  out.block_speed = block_speed(bins, runs);
 
   MainBodySums sums;
   std::vector<bool> in_main(P.size());

@@ -21,10 +21,6 @@ std::vector<double> gaussian_taps(double spacing, double length) {
   return taps;
 }
 
-int wraps(double period, double spacing) {
-  return std::max(1, static_cast<int>(std::ceil(period / spacing)));
-}
-
 // K_line of the lattice along one axis: spacing times the sum of the taps.
 double line_integral(double spacing, const std::vector<double>& taps) {
   double sum = taps[0];
@@ -43,9 +39,11 @@ NonlocalAverage::NonlocalAverage(std::vector<Regularisation> materials, double p
     active_ = active_ || m.length > 0.0;
     Taps t;
     if (m.length > 0.0) {
-      const double spacing = m.length / kLatticePerLength;
-      t.y = gaussian_taps(spacing, m.length);
-      t.x = period_ > 0.0 ? gaussian_taps(period_ / wraps(period_, spacing), m.length) : t.y;
+      t.spacing_y = m.length / kLatticePerLength;
+      t.wrap = period_ > 0.0 ? std::max(1, static_cast<int>(std::ceil(period_ / t.spacing_y))) : 0;
+      t.spacing_x = t.wrap > 0 ? period_ / t.wrap : t.spacing_y;
+      t.y = gaussian_taps(t.spacing_y, m.length);
+      t.x = t.wrap > 0 ? gaussian_taps(t.spacing_x, m.length) : t.y;
     }
     taps_.push_back(std::move(t));
   }
@@ -129,7 +127,7 @@ NonlocalLattice NonlocalAverage::lattice(int m, double xmin, double xmax, double
   const Taps& t = taps_[m];
   NonlocalLattice g;
   g.x0 = x0_;
-  g.ay.spacing = materials_[m].length / kLatticePerLength;
+  g.ay.spacing = t.spacing_y;
   g.ay.reach = static_cast<int>(t.y.size()) - 1;
   g.ay.taps = t.y.data();
   const int reach = g.ay.reach;
@@ -137,12 +135,11 @@ NonlocalLattice NonlocalAverage::lattice(int m, double xmin, double xmax, double
   g.ay.count = static_cast<int>(std::floor(ymax / g.ay.spacing + 0.5)) + 2 + reach - g.ay.first;
   g.ax.reach = static_cast<int>(t.x.size()) - 1;
   g.ax.taps = t.x.data();
-  if (period_ > 0.0) {
-    g.ax.wrap = wraps(period_, g.ay.spacing);
-    g.ax.spacing = period_ / g.ax.wrap;
-    g.ax.count = g.ax.wrap;
+  g.ax.spacing = t.spacing_x;
+  if (t.wrap > 0) {
+    g.ax.wrap = t.wrap;
+    g.ax.count = t.wrap;
   } else {
-    g.ax.spacing = g.ay.spacing;
     g.ax.first = static_cast<int>(std::floor(xmin / g.ax.spacing + 0.5)) - 1 - reach;
     g.ax.count = static_cast<int>(std::floor(xmax / g.ax.spacing + 0.5)) + 2 + reach - g.ax.first;
   }
@@ -158,10 +155,9 @@ NonlocalLattice NonlocalAverage::lattice(int m, double xmin, double xmax, double
 // delta / t_s.
 double NonlocalAverage::band_scale(int m) const {
   const Regularisation& reg = materials_[m];
-  const double l = reg.length, spacing = l / kLatticePerLength;
-  const double spacing_x = period_ > 0.0 ? period_ / wraps(period_, spacing) : spacing;
-  const double kx = line_integral(spacing_x, taps_[m].x), ky = line_integral(spacing, taps_[m].y);
-  return kx * ky / (reg.band_thickness * kx * band_peak(spacing / l, 0.0));
+  const Taps& t = taps_[m];
+  const double kx = line_integral(t.spacing_x, t.x), ky = line_integral(t.spacing_y, t.y);
+  return kx * ky / (reg.band_thickness * kx * band_peak(t.spacing_y / reg.length, 0.0));
 }
 
 void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in, double* out,

@@ -98,8 +98,11 @@ class NonlocalAverage {
   NonlocalLattice lattice(int m, double xmin, double xmax, double ymin, double ymax) const;
   double image_reach(int m) const { return kNonlocalCutoff * materials_[m].length; }
   double band_scale(int m) const;
+  // Material m's kernel sampled along each axis of its lattice.
   struct Taps {
-    std::vector<double> x, y;  // w at 0, 1, 2, ... spacings along each axis
+    std::vector<double> x, y;             // w at 0, 1, 2, ... spacings along each axis
+    double spacing_x = 0, spacing_y = 0;  // [m]
+    int wrap = 0;                         // nodes along a periodic x; 0: not periodic
   };
   const Taps& taps(int m) const { return taps_[m]; }  // empty where m is not regularised
 
