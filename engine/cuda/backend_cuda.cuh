@@ -232,6 +232,7 @@ class CudaBackend {
   const double* nonlocal_lengths() const { return lengths_.get(); }
   const MaterialParams* materials() const { return materials_.get(); }
   StepConfig kernel_config(const StepConfig& c) const;  // the base's device arrays
+  BaseView on_device(BaseView base) const;  // the polyline's arrays swapped for their device copies
 
   // The particles on the host, in the order they were given; host_particles
   // keeps its own copy (for the guards' report).
@@ -258,6 +259,7 @@ class CudaBackend {
   cuda::Buffer<MaterialParams> materials_;
   cuda::Buffer<double> lengths_;
   cuda::Buffer<double> base_px_, base_py_, base_ps_;
+  cuda::Buffer<BaseSegment> base_seg_;
   cuda::Buffer<unsigned char> partials_;  // a reduction's first pass
   cuda::Buffer<ParticleBox> box_;
   cuda::Buffer<SpeedMax> speed_max_;

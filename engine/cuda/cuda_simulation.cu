@@ -144,6 +144,7 @@ CudaBackend::CudaBackend(Particles P, const std::vector<MaterialParams>& materia
     cuda::upload(base_px_, bv.px, bv.n);
     cuda::upload(base_py_, bv.py, bv.n);
     cuda::upload(base_ps_, bv.ps, bv.n);
+    cuda::upload(base_seg_, bv.seg, bv.n - 1);
   }
   cuda::upload(materials_, materials.data(), materials.size());
   cuda::upload(lengths_, nonlocal_lengths.data(), nonlocal_lengths.size());
@@ -273,13 +274,8 @@ void CudaBackend::nonlocal_average(NonlocalAverage& nonlocal, const double* in, 
   if (n_ == 0) return;
   const ParticleBox box = bounding_box();
   if (box.non_finite > 0) return;  // the step's guards report it
-  BaseView mirror = nonlocal.mirror();
-  if (mirror.kind == BaseKind::Polyline) {
-    mirror.px = base_px_.get();
-    mirror.py = base_py_.get();
-    mirror.ps = base_ps_.get();
-  }
-  average_by_elements(*this, nonlocal, particles(), box, mirror, in, out, cuda::AtomicAdd{});
+  average_by_elements(*this, nonlocal, particles(), box, on_device(nonlocal.mirror()), in, out,
+                      cuda::AtomicAdd{});
 }
 
 NonlocalLatticeArrays CudaBackend::lattice_arrays(int nodes) {
@@ -308,12 +304,18 @@ NonlocalTaps CudaBackend::lattice_taps(const NonlocalAverage& nonlocal, int m) {
 
 StepConfig CudaBackend::kernel_config(const StepConfig& c) const {
   StepConfig d = c;
-  if (d.base.kind == BaseKind::Polyline) {
-    d.base.px = base_px_.get();
-    d.base.py = base_py_.get();
-    d.base.ps = base_ps_.get();
-  }
+  d.base = on_device(c.base);
   return d;
+}
+
+BaseView CudaBackend::on_device(BaseView base) const {
+  if (base.kind == BaseKind::Polyline) {
+    base.px = base_px_.get();
+    base.py = base_py_.get();
+    base.ps = base_ps_.get();
+    base.seg = base_seg_.get();
+  }
+  return base;
 }
 
 void CudaBackend::download(Particles& out) const {

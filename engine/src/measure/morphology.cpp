@@ -191,9 +191,7 @@ BaseFrame base_frame_at(const BaseView& base, double s) {
   // everything beyond the polyline's ends.
   const int after = static_cast<int>(std::upper_bound(base.ps, base.ps + base.n, s) - base.ps);
   const int k = std::clamp(after - 1, 0, base.n - 2);
-  const double ex = base.px[k + 1] - base.px[k], ey = base.py[k + 1] - base.py[k];
-  const double len = std::sqrt(ex * ex + ey * ey);
-  const double tx = ex / len, ty = ey / len;
+  const double tx = base.seg[k].tx, ty = base.seg[k].ty;
   const double t = s - base.ps[k];
   return BaseFrame{base.px[k] + t * tx, base.py[k] + t * ty, tx, ty, -ty, tx};
 }

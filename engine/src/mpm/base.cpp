@@ -10,6 +10,8 @@ Base::Base(const BaseSpec& spec, double grid_min_y) : kind_(spec.kind), y0_(grid
     py_.push_back(spec.points[k].y());
     ps_.push_back(s);
   }
+  for (std::size_t k = 0; k + 1 < px_.size(); ++k)
+    seg_.push_back(base_segment(px_[k], py_[k], px_[k + 1], py_[k + 1]));
 }
 
 BaseView Base::view() const {
@@ -20,6 +22,7 @@ BaseView Base::view() const {
   v.px = px_.data();
   v.py = py_.data();
   v.ps = ps_.data();
+  v.seg = seg_.data();
   return v;
 }
 

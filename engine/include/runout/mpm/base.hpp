@@ -13,13 +13,26 @@
 
 namespace runout {
 
+// A polyline segment's unit tangent and length, computed once: a point is
+// located against every segment for every particle, several times a step.
+struct BaseSegment {
+  double tx, ty, len;
+};
+
 struct BaseView {
   BaseKind kind = BaseKind::None;
   double y0 = 0;                 // Planar: the base line y = y0
   int n = 0;                     // Polyline: number of points
   const double *px = nullptr, *py = nullptr;
   const double* ps = nullptr;    // arc length at each point, ps[0] = 0
+  const BaseSegment* seg = nullptr;  // n - 1 segments, seg[k] from point k to k + 1
 };
+
+RUNOUT_HD inline BaseSegment base_segment(double x0, double y0, double x1, double y1) {
+  const double ex = x1 - x0, ey = y1 - y0;
+  const double len = std::sqrt(ex * ex + ey * ey);
+  return {ex / len, ey / len, len};
+}
 
 struct BasePoint {
   double s;       // along-base coordinate: arc length of the closest base point
@@ -32,9 +45,7 @@ RUNOUT_HD inline BasePoint locate_on_base(const BaseView& b, double x, double y)
   BasePoint best{0.0, 0.0, 0.0, 1.0};
   double best_dist2 = -1.0;
   for (int k = 0; k + 1 < b.n; ++k) {
-    const double ex = b.px[k + 1] - b.px[k], ey = b.py[k + 1] - b.py[k];
-    const double len = std::sqrt(ex * ex + ey * ey);
-    const double tx = ex / len, ty = ey / len;
+    const double tx = b.seg[k].tx, ty = b.seg[k].ty, len = b.seg[k].len;
     double t = (x - b.px[k]) * tx + (y - b.py[k]) * ty;  // along the segment
     if (k > 0 && t < 0.0) t = 0.0;
     if (k + 2 < b.n && t > len) t = len;
@@ -61,6 +72,7 @@ class Base {
   BaseKind kind_;
   double y0_;
   std::vector<double> px_, py_, ps_;
+  std::vector<BaseSegment> seg_;
 };
 
 }  // namespace runout
