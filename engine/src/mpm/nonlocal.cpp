@@ -148,16 +148,15 @@ NonlocalLattice NonlocalAverage::lattice(int m, double xmin, double xmax, double
   return g;
 }
 
-// Taken back: sum w V dxi / sum w V is the normalised average, times the
-// weight a point deep inside the body has, K_x K_y, is the integral of
-// the kernel over the increments as if the body went on all round; over
-// t_s K_line, and the lattice's own factor for a thin band, it is
-// delta / t_s.
+// Taken back: sum w V dxi / sum w V is the normalised average; a thin
+// band along x carrying delta gives delta K_x peak / (K_x K_y) there (K
+// the kernel's line integral along each axis, peak the lattice's own
+// factor for a thin band), so K_y / (t_s peak) turns it into delta / t_s.
 double NonlocalAverage::band_scale(int m) const {
   const Regularisation& reg = materials_[m];
   const Taps& t = taps_[m];
-  const double kx = line_integral(t.spacing_x, t.x), ky = line_integral(t.spacing_y, t.y);
-  return kx * ky / (reg.band_thickness * kx * band_peak(t.spacing_y / reg.length, 0.0));
+  return line_integral(t.spacing_y, t.y) /
+         (reg.band_thickness * band_peak(t.spacing_y / reg.length, 0.0));
 }
 
 void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in, double* out,
