@@ -2,16 +2,20 @@
 
 namespace runout {
 
+// Each segment's length once, for both its tangent and the arc length.
 Base::Base(const BaseSpec& spec, double grid_min_y) : kind_(spec.kind), y0_(grid_min_y) {
   double s = 0.0;
   for (std::size_t k = 0; k < spec.points.size(); ++k) {
-    if (k > 0) s += (spec.points[k] - spec.points[k - 1]).norm();
+    if (k > 0) {
+      const Eigen::Vector2d e = spec.points[k] - spec.points[k - 1];
+      const double len = e.norm();
+      seg_.push_back(BaseSegment{e.x() / len, e.y() / len, len});
+      s += len;
+    }
     px_.push_back(spec.points[k].x());
     py_.push_back(spec.points[k].y());
     ps_.push_back(s);
   }
-  for (std::size_t k = 0; k + 1 < px_.size(); ++k)
-    seg_.push_back(base_segment(px_[k], py_[k], px_[k + 1], py_[k + 1]));
 }
 
 BaseView Base::view() const {

@@ -28,12 +28,6 @@ struct BaseView {
   const BaseSegment* seg = nullptr;  // n - 1 segments, seg[k] from point k to k + 1
 };
 
-RUNOUT_HD inline BaseSegment base_segment(double x0, double y0, double x1, double y1) {
-  const double ex = x1 - x0, ey = y1 - y0;
-  const double len = std::sqrt(ex * ex + ey * ey);
-  return {ex / len, ey / len, len};
-}
-
 struct BasePoint {
   double s;       // along-base coordinate: arc length of the closest base point
   double d;       // signed distance, > 0 above the base, < 0 inside it
