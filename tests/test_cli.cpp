@@ -140,6 +140,23 @@ TEST_F(Cli, CheckSaysASofteningClayNeedsFourByFourParticles) {
   EXPECT_EQ(band.output.find("# particles/cell:"), std::string::npos) << band.output;
 }
 
+// A band's displacement is measured over nonlocal_length, which must span
+// three cells (docs/strength.md, "The averaging length"): check says so
+// where a cell is too coarse for the escarpment's l = 3 m, and not at 1 m.
+TEST_F(Cli, CheckSaysAnAveragingLengthUnderThreeCellsIsTooShort) {
+  const std::string escarpment = RUNOUT_SOURCE_DIR "/scenes/escarpment.toml";
+  const Result coarse = run_cli("check " + escarpment + " --cell 2.0 --ppc 1");
+  ASSERT_EQ(coarse.code, 0) << coarse.output;
+  EXPECT_NE(coarse.output.find("# averaging length: material 'clay': nonlocal_length = 3 m spans "
+                               "1.5 cells of 2 m"),
+            std::string::npos)
+      << coarse.output;
+  EXPECT_NE(coarse.output.find("use cells of 1 m or less"), std::string::npos) << coarse.output;
+  const Result fine = run_cli("check " + escarpment + " --cell 1.0 --ppc 1");
+  ASSERT_EQ(fine.code, 0) << fine.output;
+  EXPECT_EQ(fine.output.find("# averaging length:"), std::string::npos) << fine.output;
+}
+
 // Without --threads a run takes one thread per 10 000 particles (at most
 // every core): on small scenes a second thread cost more than it brought
 // (engine/cli/thread_count.hpp). OMP_NUM_THREADS, where set, stands.

@@ -17,6 +17,8 @@
 #include <functional>
 #include <iostream>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "analyse_command.hpp"
 #include "report_command.hpp"
@@ -40,6 +42,7 @@
 #include "runout/output/run_summary_file.hpp"
 #include "runout/scene/scene_parser.hpp"
 #include "runout/study/study.hpp"
+#include "runout/mpm/nonlocal.hpp"
 #include "runout/mpm/seeding.hpp"
 #include "runout/mpm/simulation.hpp"
 #include "runout/output/vtu_writer.hpp"
@@ -167,6 +170,31 @@ CostLimits limits_for(const LimitArgs& a, const std::string* out_dir) {
   return limits;
 }
 
+// A band's displacement is measured over l (nonlocal_length), which must be
+// wide against the band the grid makes, a cell or two: a band as wide as l
+// counts as diffuse yield and softens by its own strain, as the local law
+// does, with the cell (docs/strength.md, "The averaging length"). One line
+// per material whose l spans fewer than kRegularisationCells cells.
+std::vector<std::string> coarse_averaging(const Scene& s) {
+  std::vector<std::string> lines;
+  if (s.method != Method::Mpm) return lines;
+  const double h = s.grid.cell_size;
+  for (const auto& m : s.materials) {
+    const double l = m.nonlocal_length;
+    if (m.band_thickness <= 0.0 || l <= 0.0 || l >= kRegularisationCells * h * (1.0 - 1e-9))
+      continue;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "material '%s': nonlocal_length = %g m spans %.3g cells of %g m, under the %g "
+                  "that measure a band's displacement; its bands soften as the local law's, "
+                  "with the cell: use cells of %g m or less (docs/strength.md, \"The averaging "
+                  "length\")",
+                  m.name.c_str(), l, l / h, h, kRegularisationCells, l / kRegularisationCells);
+    lines.emplace_back(text);
+  }
+  return lines;
+}
+
 // Wall time of the check's own measurement of the step.
 constexpr double kWallEstimateSeconds = 0.1;
 
@@ -213,6 +241,7 @@ int check(const Scene& s, const SceneSource& source, const LimitArgs& limit_args
                  "[base] clay_band = true puts its band at the base instead "
                  "(docs/strength.md, \"The basal band\")\n";
   }
+  for (const std::string& line : coarse_averaging(s)) std::cout << "# averaging length: " << line << "\n";
   // Measured on the scene itself, so "on this machine" and at its size.
   try {
     const double per_step = seconds_per_step(sim, kWallEstimateSeconds);
@@ -342,6 +371,7 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
                  "no checkpoints\n";
     return cli::kUsage;
   }
+  for (const std::string& line : coarse_averaging(s)) std::cerr << "runout: warning: " << line << "\n";
   std::string why_not;
   const Runner runner = runner_for(s, backend, why_not);
   if (!runner) {
