@@ -208,7 +208,7 @@ TEST_F(Cli, NonlocalSofteningRunsOnEitherBackend) {
   std::string text = kSmallScene;
   const std::string elastic = "poisson_ratio = 0.3\n";
   text.replace(text.find(elastic), elastic.size(),
-               elastic + "model = \"tresca\"\nsu0 = 5000.0\nband_thickness = 0.2\nnonlocal_length = 1.0\n");
+               elastic + "model = \"tresca\"\nsu0 = 5000.0\nband_thickness = 0.2\nnonlocal_length = 1.5\n");
   const std::string scene = write("small.toml", text);
   const Result cuda = run_cli("run " + scene + " --backend cuda -q --out " + (dir_ / "gpu").string());
   EXPECT_TRUE(cuda.code == 0 || cuda.code == 69) << cuda.output;

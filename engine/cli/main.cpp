@@ -187,7 +187,7 @@ std::vector<std::string> coarse_averaging(const Scene& s) {
     std::snprintf(text, sizeof text,
                   "material '%s': nonlocal_length = %g m spans %.3g cells of %g m, under the %g "
                   "that measure a band's displacement; its bands soften as the local law's, "
-                  "with the cell: use cells of %g m or less (docs/strength.md, \"The averaging "
+                  "with the cell: use cells of %.3g m or less (docs/strength.md, \"The averaging "
                   "length\")",
                   m.name.c_str(), l, l / h, h, kRegularisationCells, l / kRegularisationCells);
     lines.emplace_back(text);
