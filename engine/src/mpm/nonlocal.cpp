@@ -159,55 +159,128 @@ double NonlocalAverage::band_scale(int m) const {
          (reg.band_thickness * band_peak(t.spacing_y / reg.length, 0.0));
 }
 
-void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in, double* out,
-                                       int material) {
-  const double reach = image_reach(material);
-  // The box of the material's particles and their images, split over the
-  // threads (min and max reduce in any order to the same bits); each
-  // particle's image is kept at its own index (vol 0: none; no array
-  // without a no-slip base to mirror in), so the images are spread in
-  // particle order whatever the threads.
-  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, xmax = -xmin, ymax = -xmin;
-  const bool mirrored = mirror_.kind != BaseKind::None;
-  images_.assign(mirrored ? P.n : 0, Image{0.0, 0.0, 0.0});
-#pragma omp parallel for schedule(static) reduction(min : xmin, ymin) reduction(max : xmax, ymax) \
-    if (P.n > kParallelMin)
-  for (int p = 0; p < P.n; ++p) {
-    if (P.material[p] != material) continue;
-    xmin = std::min(xmin, P.x[p]);
-    xmax = std::max(xmax, P.x[p]);
-    ymin = std::min(ymin, P.y[p]);
-    ymax = std::max(ymax, P.y[p]);
-    if (!mirrored) continue;
-    Image& image = images_[p];
-    if (base_image(mirror_, P.x[p], P.y[p], reach, image.x, image.y)) {
-      image.vol = P.vol[p];
-      xmin = std::min(xmin, image.x);
-      xmax = std::max(xmax, image.x);
-      ymin = std::min(ymin, image.y);
-      ymax = std::max(ymax, image.y);
+// The particles of one chunk (kSpreadChunk of them by index, the last
+// fewer) that are of the material, and their images, onto the chunk's own
+// box of nodes.
+void NonlocalAverage::spread_chunk(const NonlocalPoints& P, const double* in, int material,
+                                   double reach, const NonlocalLattice& g, Chunk& ch) {
+  double* increments = chunk_sums_.data() + ch.at;
+  double* volumes = increments + static_cast<std::size_t>(ch.ni) * ch.nj;
+  std::fill(increments, volumes + static_cast<std::size_t>(ch.ni) * ch.nj, 0.0);
+  // f(storage index, weight) for the 3 x 3 nodes of (x, y) in the box. The
+  // lattice, the box and the base are copied here, where no store to the
+  // sums can change them, so that they stay in registers.
+  const NonlocalLattice lattice = g;
+  const BaseView mirror = mirror_;
+  const int i0 = ch.i0 + 1, j0 = ch.j0 + 1, ni = ch.ni;
+  const auto for_nodes = [&](double x, double y, auto&& f) {
+    const LatticeSpline sx = lattice.spline_x(x), sy = lattice.spline_y(y);
+    const int i = sx.base - i0;
+    for (int b = 0; b < 3; ++b) {
+      const std::size_t row = static_cast<std::size_t>(sy.base - j0 + b) * ni + i;
+      for (int a = 0; a < 3; ++a) f(row + a, sy.w[b] * sx.w[a]);
     }
-  }
-  if (!(xmin <= xmax)) return;
-  const NonlocalLattice g = lattice(material, xmin, xmax, ymin, ymax);
-  increments_.assign(g.size(), 0.0);
-  volumes_.assign(g.size(), 0.0);
-
-  // Spread V dxi and V (with the images' V), in particle order.
-  for (int p = 0; p < P.n; ++p) {
+  };
+  const int end = std::min(P.n, ch.first + kSpreadChunk);
+  for (int p = ch.first; p < end; ++p) {
     if (P.material[p] != material) continue;
     const double v = P.vol[p], va = P.vol[p] * in[p];
     if (va > 0.0)
-      g.for_nodes(P.x[p], P.y[p], [&](int k, double w) {
-        increments_[k] += w * va;
-        volumes_[k] += w * v;
+      for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) {
+        increments[k] += w * va;
+        volumes[k] += w * v;
       });
-    else
-      g.for_nodes(P.x[p], P.y[p], [&](int k, double w) { volumes_[k] += w * v; });
+    else  // most particles, which do not yield
+      for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) { volumes[k] += w * v; });
   }
-  for (const Image& image : images_)
-    if (image.vol > 0.0)
-      g.for_nodes(image.x, image.y, [&](int k, double w) { volumes_[k] += w * image.vol; });
+  if (mirror.kind == BaseKind::None) return;
+  for (int p = ch.first; p < end; ++p) {
+    double mx, my;
+    if (P.material[p] == material && base_image(mirror, P.x[p], P.y[p], reach, mx, my))
+      for_nodes(mx, my, [&](std::size_t k, double w) { volumes[k] += w * P.vol[p]; });
+  }
+}
+
+// V a and V spread chunk by chunk of the particles, on the threads, and
+// added into the lattice in chunk order: the sums, and so the result, are
+// the same on any number of threads.
+void NonlocalAverage::spread(const NonlocalPoints& P, const double* in, int material, double reach,
+                             double pad, const NonlocalLattice& g) {
+  // A point's 3 x 3 nodes lie in the box made of the nearest nodes of the
+  // box's extremes, less and plus one (the nearest node grows with the
+  // coordinate); an image lies within pad of its particle.
+  std::size_t total = 0;
+  for (Chunk& ch : chunks_) {
+    if (!(ch.xmin <= ch.xmax)) continue;
+    ch.i0 = g.spline_x(ch.xmin - pad).base - 1;
+    ch.j0 = g.spline_y(ch.ymin - pad).base - 1;
+    ch.ni = g.spline_x(ch.xmax + pad).base + 2 - ch.i0;
+    ch.nj = g.spline_y(ch.ymax + pad).base + 2 - ch.j0;
+    ch.at = total;
+    total += 2 * static_cast<std::size_t>(ch.ni) * ch.nj;
+  }
+  chunk_sums_.resize(total);
+  const int chunks = static_cast<int>(chunks_.size());
+#pragma omp parallel for schedule(dynamic) if (P.n > kParallelMin)
+  for (int c = 0; c < chunks; ++c)
+    if (chunks_[c].ni > 0) spread_chunk(P, in, material, reach, g, chunks_[c]);
+
+  increments_.assign(g.size(), 0.0);
+  volumes_.assign(g.size(), 0.0);
+  const int rows = g.ay.count;
+#pragma omp parallel for schedule(static) if (P.n > kParallelMin)
+  for (int r = 0; r < rows; ++r) {
+    const int j = g.ay.first + r;
+    double* inc = increments_.data() + static_cast<std::size_t>(r) * g.ax.count;
+    double* vol = volumes_.data() + static_cast<std::size_t>(r) * g.ax.count;
+    for (const Chunk& ch : chunks_) {
+      if (ch.ni == 0 || j < ch.j0 || j >= ch.j0 + ch.nj) continue;
+      const std::size_t area = static_cast<std::size_t>(ch.ni) * ch.nj;
+      const double* from = chunk_sums_.data() + ch.at + static_cast<std::size_t>(j - ch.j0) * ch.ni;
+      for (int i = 0; i < ch.ni; ++i) {
+        const int k = g.ax.node(ch.i0 + i);
+        inc[k] += from[i];
+        vol[k] += from[area + i];
+      }
+    }
+  }
+}
+
+void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in, double* out,
+                                       int material) {
+  const double reach = image_reach(material);
+  // Each chunk's box of the material's particles, and the whole box from
+  // them (min and max give the same bits in any order), widened where the
+  // particles have images by how far an image can lie from its particle:
+  // twice the reach. The images are found as they are spread: finding them
+  // here as well took longer than the empty nodes this adds.
+  const double pad = mirror_.kind != BaseKind::None ? 2.0 * reach : 0.0;
+  const double inf = std::numeric_limits<double>::infinity();
+  chunks_.resize((P.n + kSpreadChunk - 1) / kSpreadChunk);
+  const int chunks = static_cast<int>(chunks_.size());
+#pragma omp parallel for schedule(static) if (P.n > kParallelMin)
+  for (int c = 0; c < chunks; ++c) {
+    const int first = c * kSpreadChunk, end = std::min(P.n, first + kSpreadChunk);
+    double x0 = inf, x1 = -inf, y0 = inf, y1 = -inf;
+    for (int p = first; p < end; ++p) {
+      if (P.material[p] != material) continue;
+      x0 = std::min(x0, P.x[p]);
+      x1 = std::max(x1, P.x[p]);
+      y0 = std::min(y0, P.y[p]);
+      y1 = std::max(y1, P.y[p]);
+    }
+    chunks_[c] = Chunk{first, x0, x1, y0, y1};
+  }
+  double xmin = inf, ymin = inf, xmax = -inf, ymax = -inf;
+  for (const Chunk& ch : chunks_) {
+    xmin = std::min(xmin, ch.xmin);
+    xmax = std::max(xmax, ch.xmax);
+    ymin = std::min(ymin, ch.ymin);
+    ymax = std::max(ymax, ch.ymax);
+  }
+  if (!(xmin <= xmax)) return;
+  const NonlocalLattice g = lattice(material, xmin - pad, xmax + pad, ymin - pad, ymax + pad);
+  spread(P, in, material, reach, pad, g);
   convolve(increments_, g.ax, g.ay);
   convolve(volumes_, g.ax, g.ay);
 

@@ -209,7 +209,10 @@ struct XiIncrement {
 };
 // The regularised increment replaces the local one; its rate is the one
 // the next step's strength takes (StrengthParams::regularised), and su
-// follows both.
+// follows both. A particle that neither yields (average 0: its local
+// increment, and so its change of xi, was 0) nor had a rate keeps the su
+// its stress update gave it at that xi and rate 0: most particles of a
+// slide, whose exp this spares.
 struct SetNonlocalXi {
   ParticleView P;
   const double* start;
@@ -219,6 +222,7 @@ struct SetNonlocalXi {
   double dt;
   RUNOUT_HD void operator()(int p) const {
     if (lengths[P.material[p]] <= 0.0) return;
+    if (average[p] == 0.0 && P.gamma_dot[p] == 0.0) return;
     P.xi[p] = start[p] + average[p];
     P.gamma_dot[p] = average[p] / dt;
     P.su[p] = strength(mats[P.material[p]].strength, P.xi[p], P.gamma_dot[p]);

@@ -3,8 +3,9 @@
 // shares, host and device: the lattice's axes and B-spline weights, a
 // particle's image in a no-slip base, the band's increment, and the
 // average taken element by element (the CUDA backend's kernels; the host's
-// NonlocalAverage sweeps rows instead, over their non-empty spans, and
-// spreads in particle order for the same bits on any thread count).
+// NonlocalAverage spreads fixed chunks of particles on the threads and
+// adds them in chunk order, and sweeps rows over their non-empty spans,
+// for the same bits on any thread count).
 #include <cmath>
 
 #include "runout/mpm/base.hpp"
@@ -46,11 +47,18 @@ struct NonlocalLattice {
   LatticeAxis ax, ay;
   double x0 = 0;
 
+  // The weights of x and y along each axis, their nodes' lattice indices
+  // base - 1 .. base + 1 (not wrapped).
+  RUNOUT_HD LatticeSpline spline_x(double x) const {
+    return lattice_spline((x - (ax.wrap > 0 ? x0 : 0.0)) / ax.spacing);
+  }
+  RUNOUT_HD LatticeSpline spline_y(double y) const { return lattice_spline(y / ay.spacing); }
+
   // f(storage index, weight) for the 3 x 3 nodes that (x, y) spreads onto.
   template <class F>
   RUNOUT_HD void for_nodes(double x, double y, F&& f) const {
-    const LatticeSpline sx = lattice_spline((x - (ax.wrap > 0 ? x0 : 0.0)) / ax.spacing);
-    const LatticeSpline sy = lattice_spline(y / ay.spacing);
+    const LatticeSpline sx = spline_x(x);
+    const LatticeSpline sy = spline_y(y);
     for (int b = 0; b < 3; ++b) {
       const int row = ay.node(sy.base - 1 + b) * ax.count;
       for (int a = 0; a < 3; ++a) f(row + ax.node(sx.base - 1 + a), sy.w[b] * sx.w[a]);

@@ -103,9 +103,13 @@ inline void rate_scaling_x4(const StrengthParams& p, const Lanes& gamma_dot, Lan
   Lanes R = zero;
   if (p.eta != 0.0) {
     // x^n = exp(n ln x): a few ulp from pow for the rates and exponents of
-    // a rate law (n ln x is small); at rest ln 0 = -inf gives 0, and the
-    // select keeps R = 0 there and for a negative rate.
-    const Lanes power = exp_lanes(p.rate_exponent * log_lanes(gamma_dot / p.reference_rate));
+    // a rate law (n ln x is small). A lane at rest or with a negative rate
+    // takes ln 1 and the select puts R = 0 there: ln 0 = -inf and exp(-inf)
+    // send the vector exp and log down their scalar path for special
+    // values, which made them the slowest part of a step where most of a
+    // slide is at rest or, under regularised softening, not yielding.
+    const Lanes moving = select_less(zero, gamma_dot, gamma_dot, splat(p.reference_rate));
+    const Lanes power = exp_lanes(p.rate_exponent * log_lanes(moving / p.reference_rate));
     R = select_less(zero, gamma_dot, p.eta * power, zero);
   }
   a = p.form == StrengthForm::Additive ? splat(1.0) : 1.0 + R;

@@ -82,7 +82,10 @@ RUNOUT_HD inline double stress_update(const ParticleView& P, int p, const Veloci
   P.fyx[p] = u.fyx;
   P.fyy[p] = u.fyy;
   store_stress_point(P, p, sp);
-  P.gamma_dot[p] = u.gamma_dot;
+  // Under regularised softening the rate the strength takes is the band's,
+  // which the driver sets after the average (stage::SetNonlocalXi); the
+  // one read above stays until then.
+  if (!mat.strength.regularised) P.gamma_dot[p] = u.gamma_dot;
   P.x[p] += s.dx[s.at(p)];
   P.y[p] += s.dy[s.at(p)];
   return cfl_speed(P, p, mat);
@@ -135,7 +138,7 @@ inline Lanes stress_update_x4(const ParticleView& P, int p, const Lanes& xx, con
   store_lanes(P.fxy + p, u.fxy);
   store_lanes(P.fyx + p, u.fyx);
   store_lanes(P.fyy + p, u.fyy);
-  store_lanes(P.gamma_dot + p, u.gamma_dot);
+  if (!mat.strength.regularised) store_lanes(P.gamma_dot + p, u.gamma_dot);
   store_lanes(P.x + p, at(P.x) + load_lanes(s.dx + s.at(p)));
   store_lanes(P.y + p, at(P.y) + load_lanes(s.dy + s.at(p)));
   return signal_speed(at(P.mass), u.vol, at(P.vx), at(P.vy), mat);
