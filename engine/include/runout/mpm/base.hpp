@@ -36,8 +36,10 @@ struct BasePoint {
 
 RUNOUT_HD inline BasePoint locate_on_base(const BaseView& b, double x, double y) {
   if (b.kind != BaseKind::Polyline) return BasePoint{x, y - b.y0, 0.0, 1.0};
-  BasePoint best{0.0, 0.0, 0.0, 1.0};
-  double best_dist2 = -1.0;
+  // The nearest segment by the squared distance; the root once, for it
+  // (the nonlocal average locates most particles of a slide every step).
+  int best = 0;
+  double best_t = 0.0, best_dist2 = -1.0;
   for (int k = 0; k + 1 < b.n; ++k) {
     const double tx = b.seg[k].tx, ty = b.seg[k].ty, len = b.seg[k].len;
     double t = (x - b.px[k]) * tx + (y - b.py[k]) * ty;  // along the segment
@@ -47,12 +49,17 @@ RUNOUT_HD inline BasePoint locate_on_base(const BaseView& b, double x, double y)
     const double dist2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
     if (best_dist2 < 0.0 || dist2 < best_dist2) {
       best_dist2 = dist2;
-      const double nx = -ty, ny = tx;  // left normal: up for increasing x
-      const double side = (x - cx) * nx + (y - cy) * ny;
-      best = BasePoint{b.ps[k] + t, side < 0.0 ? -std::sqrt(dist2) : std::sqrt(dist2), nx, ny};
+      best = k;
+      best_t = t;
     }
   }
-  return best;
+  if (best_dist2 < 0.0) return BasePoint{0.0, 0.0, 0.0, 1.0};  // no segment
+  const double tx = b.seg[best].tx, ty = b.seg[best].ty;
+  const double cx = b.px[best] + best_t * tx, cy = b.py[best] + best_t * ty;
+  const double nx = -ty, ny = tx;  // left normal: up for increasing x
+  const double side = (x - cx) * nx + (y - cy) * ny;
+  const double d = std::sqrt(best_dist2);
+  return BasePoint{b.ps[best] + best_t, side < 0.0 ? -d : d, nx, ny};
 }
 
 // Owns the polyline arrays behind a BaseView.
