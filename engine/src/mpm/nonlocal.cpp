@@ -163,26 +163,21 @@ double NonlocalAverage::band_scale(int m) const {
 // fewer) that are of the material, and their images, onto the chunk's own
 // box of nodes.
 void NonlocalAverage::spread_chunk(const NonlocalPoints& P, const double* in, int material,
-                                   double reach, const NonlocalLattice& g, Chunk& ch) {
+                                   double reach, const NonlocalLattice& g, int c) {
+  const Chunk& ch = chunks_[c];
   double* increments = chunk_sums_.data() + ch.at;
   double* volumes = increments + static_cast<std::size_t>(ch.ni) * ch.nj;
   std::fill(increments, volumes + static_cast<std::size_t>(ch.ni) * ch.nj, 0.0);
-  // f(storage index, weight) for the 3 x 3 nodes of (x, y) in the box. The
-  // lattice, the box and the base are copied here, where no store to the
-  // sums can change them, so that they stay in registers.
-  const NonlocalLattice lattice = g;
-  const BaseView mirror = mirror_;
-  const int i0 = ch.i0 + 1, j0 = ch.j0 + 1, ni = ch.ni;
+  // f(index in the box, weight) for the 3 x 3 nodes of (x, y).
   const auto for_nodes = [&](double x, double y, auto&& f) {
-    const LatticeSpline sx = lattice.spline_x(x), sy = lattice.spline_y(y);
-    const int i = sx.base - i0;
+    const LatticeSpline sx = g.spline_x(x), sy = g.spline_y(y);
     for (int b = 0; b < 3; ++b) {
-      const std::size_t row = static_cast<std::size_t>(sy.base - j0 + b) * ni + i;
-      for (int a = 0; a < 3; ++a) f(row + a, sy.w[b] * sx.w[a]);
+      const std::size_t row = static_cast<std::size_t>(sy.base - 1 + b - ch.j0) * ch.ni;
+      for (int a = 0; a < 3; ++a) f(row + (sx.base - 1 + a - ch.i0), sy.w[b] * sx.w[a]);
     }
   };
-  const int end = std::min(P.n, ch.first + kSpreadChunk);
-  for (int p = ch.first; p < end; ++p) {
+  const int first = c * kSpreadChunk, end = std::min(P.n, first + kSpreadChunk);
+  for (int p = first; p < end; ++p) {
     if (P.material[p] != material) continue;
     const double v = P.vol[p], va = P.vol[p] * in[p];
     if (va > 0.0)
@@ -193,10 +188,10 @@ void NonlocalAverage::spread_chunk(const NonlocalPoints& P, const double* in, in
     else  // most particles, which do not yield
       for_nodes(P.x[p], P.y[p], [&](std::size_t k, double w) { volumes[k] += w * v; });
   }
-  if (mirror.kind == BaseKind::None) return;
-  for (int p = ch.first; p < end; ++p) {
+  if (mirror_.kind == BaseKind::None) return;
+  for (int p = first; p < end; ++p) {
     double mx, my;
-    if (P.material[p] == material && base_image(mirror, P.x[p], P.y[p], reach, mx, my))
+    if (P.material[p] == material && base_image(mirror_, P.x[p], P.y[p], reach, mx, my))
       for_nodes(mx, my, [&](std::size_t k, double w) { volumes[k] += w * P.vol[p]; });
   }
 }
@@ -223,7 +218,7 @@ void NonlocalAverage::spread(const NonlocalPoints& P, const double* in, int mate
   const int chunks = static_cast<int>(chunks_.size());
 #pragma omp parallel for schedule(dynamic) if (P.n > kParallelMin)
   for (int c = 0; c < chunks; ++c)
-    if (chunks_[c].ni > 0) spread_chunk(P, in, material, reach, g, chunks_[c]);
+    if (chunks_[c].ni > 0) spread_chunk(P, in, material, reach, g, c);
 
   increments_.assign(g.size(), 0.0);
   volumes_.assign(g.size(), 0.0);
@@ -269,7 +264,7 @@ void NonlocalAverage::average_material(const NonlocalPoints& P, const double* in
       y0 = std::min(y0, P.y[p]);
       y1 = std::max(y1, P.y[p]);
     }
-    chunks_[c] = Chunk{first, x0, x1, y0, y1};
+    chunks_[c] = Chunk{x0, x1, y0, y1};
   }
   double xmin = inf, ymin = inf, xmax = -inf, ymax = -inf;
   for (const Chunk& ch : chunks_) {

@@ -120,12 +120,11 @@ class NonlocalAverage {
     int first = 0, last = 0;  // the columns [first, last) of a row of the x pass that are not zero
   };
   std::vector<Span> spans_;  // per row; first == last: the row is zero
-  // kSpreadChunk particles by index, the last fewer: the box of the
-  // material's particles among them [m], and the lattice nodes they and
-  // their images spread onto, at chunk_sums_[at] (V a, then V; ni x nj
-  // each).
+  // Chunk c: the particles c kSpreadChunk onwards by index, kSpreadChunk
+  // of them (the last fewer); the box of the material's particles among
+  // them [m], and the lattice nodes they and their images spread onto, at
+  // chunk_sums_[at] (V a, then V; ni x nj each).
   struct Chunk {
-    int first;
     double xmin, xmax, ymin, ymax;
     int i0 = 0, j0 = 0, ni = 0, nj = 0;
     std::size_t at = 0;
@@ -134,7 +133,7 @@ class NonlocalAverage {
   void spread(const NonlocalPoints& P, const double* in, int material, double reach, double pad,
               const NonlocalLattice& g);
   void spread_chunk(const NonlocalPoints& P, const double* in, int material, double reach,
-                    const NonlocalLattice& g, Chunk& ch);
+                    const NonlocalLattice& g, int c);
   std::vector<Chunk> chunks_;
   std::vector<double> chunk_sums_;
 };
