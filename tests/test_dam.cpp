@@ -181,6 +181,17 @@ TEST_P(DamStress, RunoutConvergesAsElementsDouble) {
   EXPECT_LT(fine, 0.7 * coarse) << runout[0] << " " << runout[1] << " " << runout[2];
 }
 
+// Without dam.elements a layer 40 m long and 4 m thick is cut at the cell,
+// but never into elements shorter than 4 / 8 = 0.5 m: 80 elements at 0.1 m
+// cells, 40 at 1 m.
+TEST(Dam, DefaultElementsFollowTheCellButNoneShorterThanAnEighthOfTheThickness) {
+  for (const auto& [cell, expected] : {std::pair{0.1, 80}, std::pair{0.5, 80}, std::pair{1.0, 40}}) {
+    Scene s = with_elements(layer_scene(40.0, 4.0, 5.0, 1800.0, 1000.0), 0);
+    s.grid.cell_size = cell;
+    EXPECT_EQ(DamSolver(s).elements(), expected) << "cell " << cell;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(BothLongitudinalStresses, DamStress,
                          ::testing::Values(EarthPressure::Rankine, EarthPressure::Hydrostatic),
                          [](const auto& info) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -61,6 +62,20 @@ double print_estimate(const char* label, const char* unit, const Calibration& c,
   return h;
 }
 
+// The DAM's elements within the budget: the scene's (by default the cell's,
+// none shorter than an eighth of the layer's thickness, dam.cpp), or fewer where
+// the budget does not afford it; a run costs as N^2 (the step follows the
+// element length).
+int print_dam_estimate(const Calibration& c, double budget) {
+  const double affordable = c.size * std::sqrt(budget / c.model.seconds);
+  const int n = std::max(2, static_cast<int>(std::min<double>(c.size, affordable)));
+  const double ratio = static_cast<double>(n) / c.size;
+  std::printf("dam cpu:  %d elements (%s; about %.3g steps, %.3g s)\n", n,
+              n == c.size ? "the scene's" : "fewer than the scene's, for the budget",
+              c.steps * ratio, c.model.seconds * ratio * ratio);
+  return n;
+}
+
 }  // namespace
 
 int budget_check(const Scene& scene, double budget) {
@@ -81,12 +96,13 @@ int budget_check(const Scene& scene, double budget) {
 
   std::optional<Calibration> dam_cal;
   std::string dam_why;
-  Scene dam = mpm;
+  // The DAM as `runout run --method dam` would run the scene: its elements
+  // do not follow a finer cell (dam.cpp), so it is calibrated at its own.
+  Scene dam = scene;
   dam.method = Method::Dam;
-  dam.dam.elements = 0;  // elements = length / cell, so that they scale with h
   try {
     DamSolver solver(dam);
-    dam_cal = calibrate(solver, solver.elements(), cell, scene.time.end, 1);
+    dam_cal = calibrate(solver, solver.elements(), scene.grid.cell_size, scene.time.end, 1);
     print_calibration("dam", "elements", *dam_cal);
   } catch (const SceneError& e) {
     dam_why = e.what();
@@ -100,8 +116,9 @@ int budget_check(const Scene& scene, double budget) {
     std::printf("mpm cuda: not available here (%s)\n", why.c_str());
   else
     std::printf("mpm cuda: a device is present; this check calibrates the CPU only\n");
+  int dam_elements = 0;
   if (dam_cal)
-    print_estimate("dam cpu: ", "elements", *dam_cal, budget);
+    dam_elements = print_dam_estimate(*dam_cal, budget);
   else
     std::printf("dam cpu:  cannot run this scene: %s\n", dam_why.c_str());
 
@@ -109,8 +126,8 @@ int budget_check(const Scene& scene, double budget) {
   if (choice.method == Method::Mpm)
     std::printf("pick: mpm cpu at h = %.3g m: %s\n", h_mpm, choice.reason.c_str());
   else
-    std::printf("pick: dam cpu at h = %.3g m: %s\n",
-                study::finest_cell_for_budget(dam_cal->model, budget), choice.reason.c_str());
+    std::printf("pick: dam cpu with %d elements (--elements %d): %s\n", dam_elements,
+                dam_elements, choice.reason.c_str());
   return cli::kOk;
 }
 

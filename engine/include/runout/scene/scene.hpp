@@ -131,7 +131,8 @@ struct DamSpec {
   // thickness t_s (the parser's default where the slide's material has one).
   ShearRateEstimate shear_rate = ShearRateEstimate::Linear;
   EarthPressure earth_pressure = EarthPressure::Rankine;
-  int elements = 0;              // 0: the body's initial length over grid.cell_size
+  int elements = 0;              // 0: the body's initial length over grid.cell_size, in
+                                 // elements no shorter than an eighth of its greatest thickness
   // Ambient water (docs/dam.md, "Ambient water"); each coefficient 0: off.
   double water_density = 1025.0;  // rho_w [kg/m3], sea water
   double skin_friction = 0.0;     // C_F: drag 0.5 rho_w C_F v|v| on the upper surface
