@@ -105,7 +105,9 @@ class DamSolver {
   const std::vector<double>& gamma_dot() const { return gamma_dot_; }
   const std::vector<double>& tau() const { return tau_; }
   // Elements: the layer's longitudinal deviator q [Pa] (tension positive)
-  // and its accumulated plastic shear strain (2 |plastic longitudinal strain|).
+  // and its softening variable: its accumulated plastic shear strain (2
+  // |plastic longitudinal strain|), or, where the clay has a band thickness
+  // t_s, the displacement of its bands over t_s (update_layer_stress).
   const std::vector<double>& deviator() const { return q_; }
   const std::vector<double>& layer_xi() const { return layer_xi_; }
   double thrust(int e) const;  // N_e without the artificial viscosity [N/m]
@@ -129,6 +131,7 @@ class DamSolver {
   void update_basal_state(double dt);
   void update_velocities(const std::vector<double>& drive, double dt);
   void update_layer_stress(double dt);
+  void soften_layer(const std::vector<double>& plastic);
   void move_nodes(double dt);
 
   Base base_;
@@ -143,6 +146,7 @@ class DamSolver {
   std::vector<double> s_, v_, node_mass_;
   std::vector<double> volume_, xi_, gamma_dot_, tau_;
   std::vector<double> q_, layer_xi_;
+  std::vector<double> layer_plastic_;  // this step's plastic strain per element (scratch)
   std::vector<Slope> slopes_;  // at each element's mid-point, for the current nodes
   double time_ = 0, last_dt_ = 0;
   long steps_ = 0;
