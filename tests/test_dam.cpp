@@ -185,7 +185,8 @@ TEST_P(DamStress, RunoutConvergesAsElementsDouble) {
 // but never into elements shorter than 4 / 8 = 0.5 m: 80 elements at 0.1 m
 // cells, 40 at 1 m.
 TEST(Dam, DefaultElementsFollowTheCellButNoneShorterThanAnEighthOfTheThickness) {
-  for (const auto& [cell, expected] : {std::pair{0.1, 80}, std::pair{0.5, 80}, std::pair{1.0, 40}}) {
+  for (const auto& [cell, expected] :
+       {std::pair{0.1, 80}, std::pair{0.5, 80}, std::pair{1.0, 40}}) {
     Scene s = with_elements(layer_scene(40.0, 4.0, 5.0, 1800.0, 1000.0), 0);
     s.grid.cell_size = cell;
     EXPECT_EQ(DamSolver(s).elements(), expected) << "cell " << cell;

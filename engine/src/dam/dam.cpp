@@ -292,8 +292,9 @@ DamSolver::DamSolver(const Scene& scene, const std::optional<MemoryEstimate>& ch
     lo = std::min(lo, s);
     hi = std::max(hi, s);
   }
-  const int n = options_.elements > 0 ? options_.elements
-                                      : default_elements(body.polygon, b, lo, hi, scene.grid.cell_size);
+  const int n = options_.elements > 0
+                    ? options_.elements
+                    : default_elements(body.polygon, b, lo, hi, scene.grid.cell_size);
   for (int i = 0; i <= n; ++i) {
     s_.push_back(lo + (hi - lo) * i / n);
     const BaseFrame f = base_frame_at(b, s_.back());
@@ -497,10 +498,11 @@ void DamSolver::update_layer_stress(double dt) {
     q_[e] = std::copysign(2.0 * strength(law_.strength, layer_xi_[e], dgamma / dt), trial);
     layer_plastic_[e] = dgamma;
   }
-  soften_layer(layer_plastic_);
+  soften_layer();
 }
 
-// The layer's softening variable from this step's plastic strains. Without
+// The layer's softening variable from this step's plastic strains
+// (layer_plastic_). Without
 // a band thickness, each element's own strain (the local law). With the
 // clay's t_s, the layer yields on bands through its thickness h, about one
 // per h along it (the horsts and grabens of a spreading slide, the scarps
@@ -512,7 +514,8 @@ void DamSolver::update_layer_stress(double dt) {
 // is first averaged over the length h around the element, so that a
 // softening zone is never shorter than the band spacing and the answer
 // does not move with the elements (docs/dam.md, "Longitudinal softening").
-void DamSolver::soften_layer(const std::vector<double>& plastic) {
+void DamSolver::soften_layer() {
+  const std::vector<double>& plastic = layer_plastic_;
   if (!(band_ > 0.0)) {
     for (int e = 0; e < elements(); ++e) layer_xi_[e] += plastic[e];
     return;

@@ -131,7 +131,7 @@ class DamSolver {
   void update_basal_state(double dt);
   void update_velocities(const std::vector<double>& drive, double dt);
   void update_layer_stress(double dt);
-  void soften_layer(const std::vector<double>& plastic);
+  void soften_layer();  // from layer_plastic_
   void move_nodes(double dt);
 
   Base base_;
