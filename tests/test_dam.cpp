@@ -705,6 +705,48 @@ TEST(Dam, InitialStateFollowsThePolygonOnAPolylineBase) {
   EXPECT_NEAR(dam.thickness(dam.elements() / 2), normal_thickness, 1e-6 * normal_thickness);
 }
 
+// A layer 2 m thick in 20 elements of 0.5 m (docs/dam.md, "Longitudinal
+// softening"): nodes s and element volumes.
+struct UniformLayer {
+  std::vector<double> s, volume;
+  UniformLayer() {
+    for (int i = 0; i <= 20; ++i) s.push_back(0.5 * i);
+    volume.assign(20, 2.0 * 0.5);
+  }
+};
+
+// Strained alike, every band slips dgamma h / sqrt 2 over t_s: xi grows by
+// 0.01 x 2 / (sqrt(2) 0.1) = 0.1414 everywhere; without t_s by 0.01.
+TEST(DamLayerBands, AUniformStrainRemouldsEveryBandByItsSlipOverTs) {
+  const UniformLayer layer;
+  const std::vector<double> plastic(20, 0.01);
+  std::vector<double> banded(20, 0.0), local(20, 0.0);
+  soften_layer(layer.s, layer.volume, plastic, 0.1, banded);
+  soften_layer(layer.s, layer.volume, plastic, 0.0, local);
+  for (int e = 0; e < 20; ++e) {
+    EXPECT_NEAR(banded[e], 0.01 * 2.0 / (std::sqrt(2.0) * 0.1), 1e-15) << e;
+    EXPECT_EQ(local[e], 0.01) << e;
+  }
+}
+
+// One element's strain is shared by the elements within h / 2 = 1 m of
+// it, five of them here, and its length-weighted total is kept: the band
+// it makes is h long whatever the elements.
+TEST(DamLayerBands, OneElementsStrainIsSpreadOverTheBandSpacing) {
+  const UniformLayer layer;
+  std::vector<double> plastic(20, 0.0), xi(20, 0.0);
+  plastic[10] = 0.05;
+  soften_layer(layer.s, layer.volume, plastic, 0.1, xi);
+  const double scale = 2.0 / (std::sqrt(2.0) * 0.1);
+  double total = 0.0;
+  for (int e = 0; e < 20; ++e) {
+    const bool near = std::abs(e - 10) <= 2;
+    EXPECT_NEAR(xi[e], near ? 0.05 / 5.0 * scale : 0.0, 1e-15) << e;
+    total += xi[e] * 0.5;
+  }
+  EXPECT_NEAR(total, 0.05 * 0.5 * scale, 1e-14);
+}
+
 // The escarpment's layer softens on bands one thickness apart (docs/dam.md,
 // "Longitudinal softening"): it breaks, thins and all but stops on the 1
 // degree seabed (its nodes under 0.5 m/s by the scene's 120 s, where a

@@ -235,6 +235,42 @@ double thickness_along_normal(const Polygon& polygon, const BaseView& base, doub
   return inside;
 }
 
+// Without a band thickness, each element's own strain (the local law).
+// With the clay's t_s, the layer yields on bands through its thickness h,
+// about one per h along it (the horsts and grabens of a spreading slide,
+// the scarps of a retrogressive one): a plastic strain dgamma
+// (engineering, twice the longitudinal strain) stretches or shortens the
+// layer by dgamma / 2 per unit length, which 45-degree bands h apart take
+// as a slip of sqrt(2) (dgamma / 2) h each, so a band remoulds by dgamma h
+// / (sqrt(2) t_s), xi = delta / t_s as in the MPM's band and the base's
+// (crack-band scaling, Bazant & Oh 1983, with the band spacing as the
+// zone's width). The strain is first averaged over the length h around
+// the element, so that a softening zone is never shorter than the band
+// spacing and the answer does not move with the elements.
+void soften_layer(const std::vector<double>& s, const std::vector<double>& volume,
+                  const std::vector<double>& plastic, double band, std::vector<double>& xi) {
+  const int n = static_cast<int>(volume.size());
+  if (!(band > 0.0)) {
+    for (int e = 0; e < n; ++e) xi[e] += plastic[e];
+    return;
+  }
+  const auto length = [&](int e) { return s[e + 1] - s[e]; };
+  const auto mid = [&](int e) { return 0.5 * (s[e] + s[e + 1]); };
+  for (int e = 0; e < n; ++e) {
+    const double h = volume[e] / length(e), reach = 0.5 * h, c = mid(e);
+    double sum = plastic[e] * length(e), covered = length(e);
+    for (int k = e - 1; k >= 0 && c - mid(k) <= reach; --k) {
+      sum += plastic[k] * length(k);
+      covered += length(k);
+    }
+    for (int k = e + 1; k < n && mid(k) - c <= reach; ++k) {
+      sum += plastic[k] * length(k);
+      covered += length(k);
+    }
+    xi[e] += (sum / covered) * h / (std::sqrt(2.0) * band);
+  }
+}
+
 DamSolver::DamSolver(const Scene& scene, const std::optional<MemoryEstimate>& checked)
     : base_(scene.base, scene.grid.min.y()),
       gravity_(scene.gravity.vector),
@@ -498,42 +534,7 @@ void DamSolver::update_layer_stress(double dt) {
     q_[e] = std::copysign(2.0 * strength(law_.strength, layer_xi_[e], dgamma / dt), trial);
     layer_plastic_[e] = dgamma;
   }
-  soften_layer();
-}
-
-// The layer's softening variable from this step's plastic strains
-// (layer_plastic_). Without
-// a band thickness, each element's own strain (the local law). With the
-// clay's t_s, the layer yields on bands through its thickness h, about one
-// per h along it (the horsts and grabens of a spreading slide, the scarps
-// of a retrogressive one): a plastic strain dgamma (engineering, twice the
-// longitudinal strain) stretches or shortens the layer by dgamma / 2 per
-// unit length, which 45-degree bands h apart take as a slip of
-// sqrt(2) (dgamma / 2) h each, so a band remoulds by dgamma h / (sqrt(2)
-// t_s), xi = delta / t_s as in the MPM's band and the base's. The strain
-// is first averaged over the length h around the element, so that a
-// softening zone is never shorter than the band spacing and the answer
-// does not move with the elements (docs/dam.md, "Longitudinal softening").
-void DamSolver::soften_layer() {
-  const std::vector<double>& plastic = layer_plastic_;
-  if (!(band_ > 0.0)) {
-    for (int e = 0; e < elements(); ++e) layer_xi_[e] += plastic[e];
-    return;
-  }
-  const int n = elements();
-  for (int e = 0; e < n; ++e) {
-    const double h = thickness(e), reach = 0.5 * h, c = mid(e);
-    double sum = plastic[e] * length(e), covered = length(e);
-    for (int k = e - 1; k >= 0 && c - mid(k) <= reach; --k) {
-      sum += plastic[k] * length(k);
-      covered += length(k);
-    }
-    for (int k = e + 1; k < n && mid(k) - c <= reach; ++k) {
-      sum += plastic[k] * length(k);
-      covered += length(k);
-    }
-    layer_xi_[e] += (sum / covered) * h / (std::sqrt(2.0) * band_);
-  }
+  soften_layer(s_, volume_, layer_plastic_, band_, layer_xi_);
 }
 
 void DamSolver::move_nodes(double dt) {

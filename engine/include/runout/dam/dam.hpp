@@ -75,6 +75,16 @@ double plug_flow_shear_rate(const StrengthParams& p, double xi, double speed, do
 // base normal: the length of the normal ray from the base inside the polygon.
 double thickness_along_normal(const Polygon& polygon, const BaseView& base, double s);
 
+// The layer's softening variable advanced by one step's plastic strains
+// (engineering, per element): without a band thickness (band = 0) by each
+// element's own; with the clay's t_s = band, on bands one layer thickness
+// apart (docs/dam.md, "Longitudinal softening"): by the plastic strain
+// averaged over the elements within h / 2 of the element, times h /
+// (sqrt(2) t_s). Nodes s (elements + 1), element volumes (area per unit
+// width: h = volume / length).
+void soften_layer(const std::vector<double>& s, const std::vector<double>& volume,
+                  const std::vector<double>& plastic, double band, std::vector<double>& xi);
+
 class DamSolver {
  public:
   // The slide is the first body of the scene; scene.dam sets the elements
@@ -131,7 +141,6 @@ class DamSolver {
   void update_basal_state(double dt);
   void update_velocities(const std::vector<double>& drive, double dt);
   void update_layer_stress(double dt);
-  void soften_layer();  // from layer_plastic_
   void move_nodes(double dt);
 
   Base base_;
