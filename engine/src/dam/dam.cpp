@@ -354,6 +354,7 @@ DamSolver::DamSolver(const Scene& scene, const std::optional<MemoryEstimate>& ch
   tau_.assign(n, 0.0);
   q_.assign(n, 0.0);  // stress-free start: the hydrostatic thrust, as at K = 1
   layer_xi_.assign(n, 0.0);
+  opened_.assign(n, 0.0);
 }
 
 DamSolver::Slope DamSolver::slope_at(double s) const {
@@ -439,6 +440,17 @@ void DamSolver::update_basal_state(double dt) {
     gamma_dot_[e] = layer.basal_rate;
     const double su = strength(law_.strength, xi_[e], gamma_dot_[e]);
     tau_[e] = std::min(su, cap);
+    if (band_ > 0.0) {
+      // The share of the element's base under its grabens' floors: an
+      // element of intact length l0 pulled plastically by opened * l0 has
+      // opened / (1 + opened) of its length open, filled by clay remoulded
+      // on the layer's bands, which the base carries at that clay's
+      // strength (as the MPM's basal band does where the slide's own
+      // bands reach it, docs/strength.md, "The basal band").
+      const double share = opened_[e] / (1.0 + opened_[e]);
+      const double fill = std::min(strength(law_.strength, layer_xi_[e], gamma_dot_[e]), cap);
+      tau_[e] = (1.0 - share) * tau_[e] + share * fill;
+    }
     if (su <= cap) xi_[e] += layer.mean_rate * dt;
   }
 }
@@ -533,6 +545,7 @@ void DamSolver::update_layer_stress(double dt) {
                                                  std::abs(trial) - limit, two_g, dt);
     q_[e] = std::copysign(2.0 * strength(law_.strength, layer_xi_[e], dgamma / dt), trial);
     layer_plastic_[e] = dgamma;
+    if (band_ > 0.0 && trial > 0.0) opened_[e] += 0.5 * dgamma;  // pulled: its grabens open
   }
   soften_layer(s_, volume_, layer_plastic_, band_, layer_xi_);
 }

@@ -120,6 +120,10 @@ class DamSolver {
   // t_s, the displacement of its bands over t_s (update_layer_stress).
   const std::vector<double>& deviator() const { return q_; }
   const std::vector<double>& layer_xi() const { return layer_xi_; }
+  // Elements: the layer's accumulated plastic extension (longitudinal
+  // strain), where the clay has a band thickness: its grabens' opening,
+  // whose floors carry the base ("Basal resistance" in docs/dam.md).
+  const std::vector<double>& opened() const { return opened_; }
   double thrust(int e) const;  // N_e without the artificial viscosity [N/m]
   double length(int e) const { return s_[e + 1] - s_[e]; }
   double thickness(int e) const { return volume_[e] / length(e); }
@@ -154,7 +158,7 @@ class DamSolver {
   double inertia_ = 1;  // 1 + C_m rho_w / rho: the added mass of the water moved along
   std::vector<double> s_, v_, node_mass_;
   std::vector<double> volume_, xi_, gamma_dot_, tau_;
-  std::vector<double> q_, layer_xi_;
+  std::vector<double> q_, layer_xi_, opened_;
   std::vector<double> layer_plastic_;  // this step's plastic strain per element (scratch)
   std::vector<Slope> slopes_;  // at each element's mid-point, for the current nodes
   double time_ = 0, last_dt_ = 0;
