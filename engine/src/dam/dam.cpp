@@ -35,7 +35,7 @@ constexpr double kElementsPerThickness = 8.0;
 // shorter than its thickness, and the explicit step follows the element
 // length, so N elements cost as N^2. From H / 8 to the cell (60 times
 // finer on the reference scenes) the five scenes' runouts move by at most
-// 0.9 % (docs/dam.md, "Elements"). H is sampled at the cell's elements.
+// 2.5 % (docs/dam.md, "Elements"). H is sampled at the cell's elements.
 int default_elements(const Polygon& polygon, const BaseView& base, double lo, double hi,
                      double cell) {
   const int fine = std::max(2, static_cast<int>(std::lround((hi - lo) / cell)));
