@@ -440,7 +440,7 @@ void DamSolver::update_basal_state(double dt) {
     gamma_dot_[e] = layer.basal_rate;
     const double su = strength(law_.strength, xi_[e], gamma_dot_[e]);
     tau_[e] = std::min(su, cap);
-    if (band_ > 0.0) {
+    if (opened_[e] > 0.0) {  // only where the clay has a band thickness
       // The share of the element's base under its grabens' floors: an
       // element of intact length l0 pulled plastically by opened * l0 has
       // opened / (1 + opened) of its length open, filled by clay remoulded

@@ -125,9 +125,9 @@ void require_int_counts(const Scene& scene, Method method, const MemoryEstimate&
   if (method == Method::Dam) {
     if (e.items_bound > INT_MAX)
       refuse("dam.elements: about " + number_text(e.items_bound) +
-             " elements (at most the body's length / grid.cell_size when dam.elements is 0), more than "
-             "the " + std::to_string(INT_MAX) + " a run can index: raise grid.cell_size or set "
-             "dam.elements");
+             " elements (at most the body's length / grid.cell_size when dam.elements is 0), "
+             "more than the " + std::to_string(INT_MAX) +
+             " a run can index: raise grid.cell_size or set dam.elements");
     return;
   }
   if (e.items_bound > INT_MAX)
@@ -172,7 +172,8 @@ void require_memory(const Scene& scene, Method method, const MemoryEstimate& e,
                            " available (MemAvailable in /proc/meminfo): ";
   if (method == Method::Dam)
     refuse("dam.elements: " + need + number_text(e.items) + " elements of " +
-           byte_text(e.item_bytes) + " (dam.elements, or at most the body's length / grid.cell_size); "
+           byte_text(e.item_bytes) +
+           " (dam.elements, or at most the body's length / grid.cell_size); "
            "raise grid.cell_size or lower dam.elements");
   refuse("grid.cell_size: " + need + number_text(e.items) + " particles of " +
          byte_text(e.item_bytes) + " (" + particle_drivers(scene) + ") and " +

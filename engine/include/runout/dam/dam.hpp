@@ -117,7 +117,7 @@ class DamSolver {
   // Elements: the layer's longitudinal deviator q [Pa] (tension positive)
   // and its softening variable: its accumulated plastic shear strain (2
   // |plastic longitudinal strain|), or, where the clay has a band thickness
-  // t_s, the displacement of its bands over t_s (update_layer_stress).
+  // t_s, the displacement of its bands over t_s (soften_layer).
   const std::vector<double>& deviator() const { return q_; }
   const std::vector<double>& layer_xi() const { return layer_xi_; }
   // Elements: the layer's accumulated plastic extension (longitudinal
