@@ -643,6 +643,13 @@ TEST(FrameChecks, MorphologyRefusesWhatItCannotMeasure) {
   runout::Particles far = p;
   far.x[3] = 1e9;  // beyond 2^30 spacings
   EXPECT_NE(problem(far, base, kRuleSpacing).find("2^30"), std::string::npos);
+  runout::Particles far_initially = p;
+  far_initially.x0[3] = 1e9;
+  EXPECT_NE(problem(far_initially, base, kRuleSpacing).find("2^30"), std::string::npos);
+  // A fuzzer's frame: a spacing of 1e300 m lets a base from -1.7e308 to
+  // 1.7e308 m pass the spacing test, and its segment's length overflows.
+  const std::optional<runout::Base> huge_base = base_from_points({-1.7e308, 0, 0, 1.7e308, 1, 0}, 3);
+  EXPECT_NE(problem(p, huge_base, 1e300).find("10^12 m"), std::string::npos);
   EXPECT_EQ(problem(runout::Particles(), base, kRuleSpacing), "");
 }
 
@@ -661,6 +668,10 @@ TEST(FrameChecks, PointsAndPointArrays) {
             std::string::npos);
   EXPECT_EQ(extent_problem({{0, 0}, {1e6, 2}}, 0.1), "");
   EXPECT_NE(extent_problem({{0, 0}, {1e9, 2}}, 0.1).find("2^30"), std::string::npos);
+  EXPECT_EQ(extent_problem({{0, 0}, {-1e12, 2}}, 1e4), "");
+  EXPECT_EQ(extent_problem({{0, 0}, {-2e12, 2}}, 1e4),
+            "The points reach 2000000000000.000000 m from the origin, more than 10^12 m: not a "
+            "Runout particle frame.");
 }
 
 TEST(FrameBase, ReadAsTheEngineWritesIt) {

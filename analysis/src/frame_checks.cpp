@@ -13,6 +13,12 @@ namespace {
 // 0.5 m bins is 2e4), well short of exhausting memory (48 B each).
 constexpr double kMaxProfileBins = 1e6;
 
+// The farthest a point may lie from the origin, in metres: beyond any
+// geographic coordinate (UTM northings stay under 1e7 m), and far enough
+// inside the double range that differences and squares of coordinates in
+// the base geometry (locate_on_base) stay finite.
+constexpr double kMaxReach = 1e12;
+
 double span(const runout::StaggeredArray& x, const runout::StaggeredArray& y) {
   const auto [x_lo, x_hi] = std::minmax_element(x.begin(), x.end());
   const auto [y_lo, y_hi] = std::minmax_element(y.begin(), y.end());
@@ -37,9 +43,9 @@ std::string base_extent_problem(const Base& base, double spacing) {
   return extent_problem(points, spacing);
 }
 
-std::vector<Vec2> positions(const Particles& p) {
-  std::vector<Vec2> points(p.x.size());
-  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {p.x[i], p.y[i]};
+std::vector<Vec2> positions(const runout::StaggeredArray& x, const runout::StaggeredArray& y) {
+  std::vector<Vec2> points(x.size());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {x[i], y[i]};
   return points;
 }
 
@@ -78,6 +84,9 @@ std::string extent_problem(const std::vector<Vec2>& points, double spacing) {
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
   }
   const double reach = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(hi.x), std::abs(hi.y)});
+  if (!(reach <= kMaxReach))
+    return "The points reach " + std::to_string(reach) +
+           " m from the origin, more than 10^12 m: not a Runout particle frame.";
   if (reach / spacing < 1073741824.0) return "";
   return "The points reach " + std::to_string(reach) + " from the origin, more than 2^30 " +
          "particle spacings of " + std::to_string(spacing) + ": not a Runout particle frame.";
@@ -92,7 +101,9 @@ std::string morphology_problem(const Particles& particles, const std::optional<B
     return "The frame has no field data \"base_points\" (the base polyline: at least two "
            "(x, y, 0) points, x strictly increasing): not a Runout particle frame.";
   for (const std::string& problem :
-       {extent_problem(positions(particles), spacing), base_extent_problem(*base, spacing)})
+       {extent_problem(positions(particles.x, particles.y), spacing),
+        extent_problem(positions(particles.x0, particles.y0), spacing),
+        base_extent_problem(*base, spacing)})
     if (!problem.empty()) return problem;
   // measure_slide divides by the masses.
   for (const double m : particles.mass)

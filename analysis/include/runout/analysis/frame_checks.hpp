@@ -34,13 +34,15 @@ std::string point_array_problem(const std::string& name, const std::vector<doubl
 
 // What makes the points too far apart for neighbour searches at `spacing`:
 // a bounding box wider than 2^30 spacings, whose cell indices would not fit
-// the 32 bits of PointGrid's keys (any real slide is far smaller).
+// the 32 bits of PointGrid's keys (any real slide is far smaller), or a
+// point farther than 10^12 m from the origin, where the base geometry's
+// arithmetic would overflow.
 std::string extent_problem(const std::vector<Vec2>& points, double spacing);
 
 // What stops the morphology of a frame read into `particles` (x, y, vx, vy,
 // mass, x0, y0) with the base and particle spacing it carries (base nullopt:
-// none, or none usable): no spacing > 0, no base, points or base beyond
-// extent_problem, a mass (the point array `mass_name`) that is not > 0, or
+// none, or none usable): no spacing > 0, no base, points, initial
+// positions or base beyond extent_problem, a mass (the point array `mass_name`) that is not > 0, or
 // more than 10^6 profile bins of bin_spacings spacings over the points or
 // their initial positions (one stray point would otherwise cost gigabytes).
 std::string morphology_problem(const Particles& particles, const std::optional<Base>& base,
