@@ -646,10 +646,14 @@ TEST(FrameChecks, MorphologyRefusesWhatItCannotMeasure) {
   runout::Particles far_initially = p;
   far_initially.x0[3] = 1e9;
   EXPECT_NE(problem(far_initially, base, kRuleSpacing).find("2^30"), std::string::npos);
-  // A fuzzer's frame: a spacing of 1e300 m lets a base from -1.7e308 to
-  // 1.7e308 m pass the spacing test, and its segment's length overflows.
-  const std::optional<runout::Base> huge_base = base_from_points({-1.7e308, 0, 0, 1.7e308, 1, 0}, 3);
-  EXPECT_NE(problem(p, huge_base, 1e300).find("10^12 m"), std::string::npos);
+  // A spacing of 1e300 m passes any reach in spacings; the reach in metres
+  // still bounds the base geometry's arithmetic.
+  const std::optional<runout::Base> far_base = base_from_points({-1e13, 0, 0, 1e13, 1, 0}, 3);
+  ASSERT_TRUE(far_base);
+  EXPECT_NE(problem(p, far_base, 1e300).find("10^12 m"), std::string::npos);
+  runout::Particles far_out = p;
+  far_out.x[3] = 2e12;
+  EXPECT_NE(problem(far_out, base, 1e300).find("10^12 m"), std::string::npos);
   EXPECT_EQ(problem(runout::Particles(), base, kRuleSpacing), "");
 }
 
@@ -691,6 +695,9 @@ TEST(FrameBase, ReadAsTheEngineWritesIt) {
   EXPECT_FALSE(base_from_points({0, 1}, 1));
   EXPECT_FALSE(base_from_points({0, 0, 0, 0, 1, 0}, 3));
   EXPECT_FALSE(base_from_points({0, 0, 0, NAN, 1, 0}, 3));
+  // Fuzzers' bases: a segment whose |e|^2 underflows to 0, one whose length overflows.
+  EXPECT_FALSE(base_from_points({0, 0, 0, 5.4e-311, 2e-323, 0}, 3));
+  EXPECT_FALSE(base_from_points({-1.7e308, 0, 0, 1.7e308, 1, 0}, 3));
   EXPECT_EQ(x_axis_base().kind(), runout::BaseKind::Planar);
 }
 

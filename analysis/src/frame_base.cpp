@@ -1,5 +1,7 @@
 #include "runout/analysis/frame_base.hpp"
 
+#include <cmath>
+
 namespace runout::analysis {
 
 std::optional<Base> base_from_points(const std::vector<double>& values, int components) {
@@ -15,7 +17,14 @@ std::optional<Base> base_from_points(const std::vector<double>& values, int comp
   }
   if (spec.points.size() == 2 && spec.points[0].y() == spec.points[1].y())
     spec.kind = BaseKind::Planar;
-  return Base(spec, spec.points[0].y());
+  Base base(spec, spec.points[0].y());
+  // A segment a few subnormals long has a length whose square underflows
+  // to 0, and so no direction.
+  const BaseView view = base.view();
+  for (int k = 0; k + 1 < view.n; ++k)
+    if (!(view.seg[k].len > 0 && std::isfinite(view.seg[k].tx) && std::isfinite(view.seg[k].ty)))
+      return std::nullopt;
+  return base;
 }
 
 Base x_axis_base() {

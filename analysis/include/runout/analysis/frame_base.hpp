@@ -12,8 +12,8 @@ namespace runout::analysis {
 // first): two points at one height are its planar base (s = x, as the engine
 // measures it), more points its polyline. nullopt with fewer than two
 // points or two components, with x not strictly increasing (a repeated
-// point would make a segment without a direction) or with a coordinate that
-// is not finite.
+// point would make a segment without a direction), with a segment too short
+// for its length to be computed, or with a coordinate that is not finite.
 std::optional<Base> base_from_points(const std::vector<double>& values, int components);
 
 // The x axis (s = x, d = y): the base the band and block searches measure
