@@ -432,6 +432,12 @@ INSTANTIATE_TEST_SUITE_P(
                   "points = [[0, 1], [4, 0.5], [4, 0]]",
                   28, "base.points",
                   "x must increase strictly along the line: point 2 (4, 0) follows x = 4"},
+        ErrorCase{"PolylineSegmentWithoutLength", 25, 25,
+                  "max = [3.0, 2.0]\n[base]\nkind = \"polyline\"\n"
+                  "points = [[0, 1], [1e-320, 1], [4, 0]]",
+                  28, "base.points",
+                  "point 1 (1e-320, 1) is too close to point 0 for the segment between them to "
+                  "have a length"},
         ErrorCase{"PolylineOutsideGrid", 25, 25,
                   "max = [3.0, 2.0]\n[base]\nkind = \"polyline\"\npoints = [[0, 1], [12, 0]]", 28,
                   "base.points", "point 1 (12, 0) lies outside the grid's x range [0, 10]"},

@@ -686,6 +686,11 @@ std::vector<Eigen::Vector2d> read_base_line(const Value& value, const GridSpec& 
     if (i > 0 && !(p.x() > points[i - 1].x()))
       value.fail("x must increase strictly along the line: " + which + " follows x = " +
                  format_number(points[i - 1].x()));
+    // The base divides by each segment's length (Base): one whose square
+    // underflows to 0 has none.
+    if (i > 0 && !((p - points[i - 1]).norm() > 0.0))
+      value.fail(which + " is too close to point " + std::to_string(i - 1) +
+                 " for the segment between them to have a length");
   }
   return points;
 }
