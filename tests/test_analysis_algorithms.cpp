@@ -695,9 +695,11 @@ TEST(FrameBase, ReadAsTheEngineWritesIt) {
   EXPECT_FALSE(base_from_points({0, 1}, 1));
   EXPECT_FALSE(base_from_points({0, 0, 0, 0, 1, 0}, 3));
   EXPECT_FALSE(base_from_points({0, 0, 0, NAN, 1, 0}, 3));
-  // Fuzzers' bases: a segment whose |e|^2 underflows to 0, one whose length overflows.
+  // Fuzzers' bases: a segment whose |e|^2 underflows to 0, one whose length overflows,
+  // and one whose differences are finite but whose |e|^2 overflows.
   EXPECT_FALSE(base_from_points({0, 0, 0, 5.4e-311, 2e-323, 0}, 3));
   EXPECT_FALSE(base_from_points({-1.7e308, 0, 0, 1.7e308, 1, 0}, 3));
+  EXPECT_FALSE(base_from_points({0, 0, 0, 1e308, 1e308, 0}, 3));
   EXPECT_EQ(x_axis_base().kind(), runout::BaseKind::Planar);
 }
 

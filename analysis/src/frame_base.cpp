@@ -18,12 +18,12 @@ std::optional<Base> base_from_points(const std::vector<double>& values, int comp
   if (spec.points.size() == 2 && spec.points[0].y() == spec.points[1].y())
     spec.kind = BaseKind::Planar;
   Base base(spec, spec.points[0].y());
-  // A segment a few subnormals long has a length whose square underflows
-  // to 0, and so no direction.
+  // A segment's direction is its difference over its length: a length
+  // whose square underflows to 0 (subnormal coordinates) or overflows
+  // gives none.
   const BaseView view = base.view();
   for (int k = 0; k + 1 < view.n; ++k)
-    if (!(view.seg[k].len > 0 && std::isfinite(view.seg[k].tx) && std::isfinite(view.seg[k].ty)))
-      return std::nullopt;
+    if (!(view.seg[k].len > 0 && std::isfinite(view.seg[k].len))) return std::nullopt;
   return base;
 }
 

@@ -42,9 +42,10 @@ std::string extent_problem(const std::vector<Vec2>& points, double spacing);
 // What stops the morphology of a frame read into `particles` (x, y, vx, vy,
 // mass, x0, y0) with the base and particle spacing it carries (base nullopt:
 // none, or none usable): no spacing > 0, no base, points, initial
-// positions or base beyond extent_problem, a mass (the point array `mass_name`) that is not > 0, or
-// more than 10^6 profile bins of bin_spacings spacings over the points or
-// their initial positions (one stray point would otherwise cost gigabytes).
+// positions or base beyond extent_problem, a mass (the point array
+// `mass_name`) that is not > 0, or more than 10^6 profile bins of
+// bin_spacings spacings over the points or their initial positions (one
+// stray point would otherwise cost gigabytes).
 std::string morphology_problem(const Particles& particles, const std::optional<Base>& base,
                                double spacing, double bin_spacings,
                                const std::string& mass_name = "mass");
