@@ -229,3 +229,38 @@ TEST_F(CheckpointCli, AFreshRunRemovesAnEarlierCheckpoint) {
   EXPECT_FALSE(fs::exists(out / "checkpoint.bin"));
   EXPECT_EQ(run_cli("resume " + out.string()).code, 66);
 }
+
+// A run that ended still moving goes on to a later end: `resume --end`
+// from its last checkpoint makes the run that went to that end at once
+// (history, index, every frame byte for byte), and the folder's scene and
+// the checkpoints written on the way agree, so it can be resumed again.
+TEST_F(CheckpointCli, ResumeWithALaterEndGoesOnAsOneRun) {
+  const fs::path straight = run("straight");
+  const fs::path out = folder_.path() / "shorter";
+  const Result first = run_cli("run " + scene_ + " --end 0.2 --checkpoint-every 0.1 -q -t 2 -o " +
+                               out.string());
+  ASSERT_EQ(first.code, 0) << first.output;
+
+  const std::string history = read_file(out / "history.csv");
+  const Result early = run_cli("resume " + out.string() + " --end 0.05 -q");
+  EXPECT_EQ(early.code, 79) << early.output;
+  EXPECT_NE(early.output.find("--end 0.05 s is not after the checkpoint's t = 0.1 s"),
+            std::string::npos)
+      << early.output;
+  EXPECT_EQ(read_file(out / "history.csv"), history) << "a refused resume leaves the folder";
+
+  const Result on = run_cli("resume " + out.string() + " --end 0.4 -q -t 2");
+  ASSERT_EQ(on.code, 0) << on.output;
+  EXPECT_NE(on.output.find("resumed from the checkpoint at t = 0.1"), std::string::npos)
+      << on.output;
+  expect_same_run(straight, out, "small.pvd");
+  const std::string resolved = read_file(out / "scene.resolved.toml");
+  EXPECT_NE(resolved.find("end = 0.4"), std::string::npos) << resolved;
+  EXPECT_NE(resolved.find("\"time.end = 0.2\", \"time.end = 0.4\""), std::string::npos) << resolved;
+
+  const Result again = run_cli("resume " + out.string() + " -q -t 2");
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("resumed from the checkpoint at t = 0.3"), std::string::npos)
+      << again.output;
+  expect_same_run(straight, out, "small.pvd");
+}

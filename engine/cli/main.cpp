@@ -392,8 +392,8 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
                  s.method == Method::Dam);
 }
 
-int resume(const std::string& dir, const std::string& backend, bool quiet,
-           bool default_threads) {
+int resume(const std::string& dir, std::optional<double> end, const std::string& backend,
+           bool quiet, bool default_threads) {
   // Sized by the run's resolved scene; where it cannot be read every core
   // stays, and the resume itself says what is wrong with the folder.
   if (default_threads) {
@@ -411,6 +411,7 @@ int resume(const std::string& dir, const std::string& backend, bool quiet,
   }
   RunOptions opt;
   opt.out_dir = dir;
+  opt.end = end;
   if (default_threads && backend == "cpu") opt.adapt_threads = cli::adaptable_threads();
   return execute(resumer, opt, quiet, false);
 }
@@ -483,6 +484,11 @@ int main(int argc, char** argv) {
       ->required()
       ->check(cli::non_empty_folder());
   add_run_args(resume_cmd, run_resume_args);
+  std::optional<double> resume_end;
+  resume_cmd->add_option("--end", resume_end,
+                         "Run on to this time [s] instead of the run's end time (a run that "
+                         "ended still moving goes on from its last checkpoint)")
+      ->check(cli::finite_positive());
   CLI::App* check_cmd =
       app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
   add_scene_args(check_cmd, check_args);
@@ -526,7 +532,7 @@ int main(int argc, char** argv) {
       return run(loaded.scene, loaded.source, out, backend, quiet, checkpoint_every, run_limits,
                  threads <= 0);
     }
-    if (*resume_cmd) return resume(resume_dir, backend, quiet, threads <= 0);
+    if (*resume_cmd) return resume(resume_dir, resume_end, backend, quiet, threads <= 0);
     if (*check_cmd && budget) return budget_check(load(check_args).scene, *budget);
     if (*check_cmd) {
       const LoadedScene loaded = load(check_args);

@@ -291,9 +291,21 @@ inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
     scene = parse_scene(cp.state.scene_toml, path + " (its scene)");
     require_particles_fit(cp.particles, scene, path);
     require_schedule(cp.state.schedule, path);
+    if (options.end) {
+      if (!(*options.end > cp.state.counters.time)) {
+        char msg[128];
+        std::snprintf(msg, sizeof msg, "--end %.6g s is not after the checkpoint's t = %.6g s",
+                      *options.end, cp.state.counters.time);
+        throw ResumeRefused(msg);
+      }
+      apply_overrides(scene, std::nullopt, std::nullopt, options.end);  // SceneError if refused
+    }
     const std::string history = kept_history(dir, cp.state.schedule);
     require_kept_frames(dir, cp.state.schedule);
     rewind_folder(dir, cp.state.schedule, history);
+    // The folder's scene is the one the run goes on with; later checkpoints
+    // carry the same text (run_mpm), so a later resume finds them matched.
+    if (options.end) write_file_atomically((dir / "scene.resolved.toml").string(), to_toml(scene));
     return cp;
   } catch (...) {
     unlock_output_folder(dir.string());

@@ -39,6 +39,10 @@ struct RunOptions {
   // it again.
   // Empty: the run estimates and checks it itself.
   std::optional<MemoryEstimate> memory;
+  // A resume only: run on to this time instead of the run's own end (a run
+  // that ended still moving goes on). Later than the checkpoint; recorded in
+  // the folder's resolved scene as an override, as `runout run --end` is.
+  std::optional<double> end;
 };
 
 struct RunSummary {
