@@ -36,6 +36,10 @@ namespace fs = std::filesystem;
 // History rows come this many times per frame interval.
 inline constexpr int kHistoryPerFrame = 10;
 
+// The scene a run goes on with, in its folder: what `resume` checks a
+// checkpoint's scene against.
+inline constexpr const char* kResolvedSceneFile = "scene.resolved.toml";
+
 // A run replaces what an earlier run left in the same folder, so that no
 // stale frame of a longer run is left beside the new index; temporaries of
 // writes a killed run never finished go too (the folder's lock says no
@@ -47,7 +51,7 @@ inline void clear_previous_output(const fs::path& dir) {
     const bool profile = name.rfind("profile_", 0) == 0 && ext == ".csv";
     if (ext == ".vtu" || ext == ".vtp" || ext == ".pvd" || ext == ".manifest" || profile ||
         name == "history.csv" ||
-        name == "scene.resolved.toml" || name == kCheckpointFile || name == kSummaryFile ||
+        name == kResolvedSceneFile || name == kCheckpointFile || name == kSummaryFile ||
         is_atomic_temporary(name))
       fs::remove(entry.path());
   }
@@ -81,6 +85,10 @@ inline double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+inline void write_resolved_scene(const fs::path& dir, const Scene& scene) {
+  write_file_atomically((dir / kResolvedSceneFile).string(), to_toml(scene));
+}
+
 // The output folder, locked for this process (the caller releases it, see
 // AdoptedFolderLock), emptied of an earlier run's files, with the resolved
 // scene in it.
@@ -90,7 +98,7 @@ inline fs::path prepare_folder(const Scene& scene, const RunOptions& options) {
   lock_output_folder(dir.string());
   try {
     clear_previous_output(dir);
-    write_file_atomically((dir / "scene.resolved.toml").string(), to_toml(scene));
+    write_resolved_scene(dir, scene);
   } catch (...) {
     unlock_output_folder(dir.string());
     throw;
@@ -287,7 +295,7 @@ inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
   lock_output_folder(dir.string());
   try {
     Checkpoint cp = read_checkpoint(path);
-    require_same_scene(cp.state, (dir / "scene.resolved.toml").string(), path);
+    require_same_scene(cp.state, (dir / kResolvedSceneFile).string(), path);
     scene = parse_scene(cp.state.scene_toml, path + " (its scene)");
     require_particles_fit(cp.particles, scene, path);
     require_schedule(cp.state.schedule, path);
@@ -305,7 +313,7 @@ inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
     rewind_folder(dir, cp.state.schedule, history);
     // The folder's scene is the one the run goes on with; later checkpoints
     // carry the same text (run_mpm), so a later resume finds them matched.
-    if (options.end) write_file_atomically((dir / "scene.resolved.toml").string(), to_toml(scene));
+    if (options.end) write_resolved_scene(dir, scene);
     return cp;
   } catch (...) {
     unlock_output_folder(dir.string());
