@@ -249,6 +249,18 @@ TEST_F(CheckpointCli, ResumeWithALaterEndGoesOnAsOneRun) {
       << early.output;
   EXPECT_EQ(read_file(out / "history.csv"), history) << "a refused resume leaves the folder";
 
+  // The later end is held to the limits `runout run --end` holds it to.
+  const Result costly = run_cli("resume " + out.string() + " --end 0.4 --max-steps 10 -q");
+  EXPECT_EQ(costly.code, 65) << costly.output;
+  EXPECT_NE(costly.output.find("time.end: the run needs at least"), std::string::npos)
+      << costly.output;
+  EXPECT_NE(costly.output.find("--max-steps"), std::string::npos) << costly.output;
+  const Result bulky = run_cli("resume " + out.string() + " --end 0.4 --max-output 1e-6 -q");
+  EXPECT_EQ(bulky.code, 65) << bulky.output;
+  EXPECT_NE(bulky.output.find("time.output_interval: the run writes about"), std::string::npos)
+      << bulky.output;
+  EXPECT_EQ(read_file(out / "history.csv"), history) << "a refused resume leaves the folder";
+
   const Result on = run_cli("resume " + out.string() + " --end 0.4 -q -t 2");
   ASSERT_EQ(on.code, 0) << on.output;
   EXPECT_NE(on.output.find("resumed from the checkpoint at t = 0.1"), std::string::npos)

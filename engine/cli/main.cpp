@@ -120,7 +120,7 @@ std::string step_count_text(double steps) {
   return buf;
 }
 
-// --max-steps and --max-output (GiB) of run and check.
+// --max-steps and --max-output (GiB) of run, check and resume (with --end).
 struct LimitArgs {
   double max_steps = CostLimits{}.max_steps;
   double max_output_gib = CostLimits{}.max_output_bytes / double(1 << 30);
@@ -393,16 +393,22 @@ int run(const Scene& s, const SceneSource& source, const std::string& out,
 }
 
 int resume(const std::string& dir, std::optional<double> end, const std::string& backend,
-           bool quiet, bool default_threads) {
-  // Sized by the run's resolved scene; where it cannot be read every core
-  // stays, and the resume itself says what is wrong with the folder.
-  if (default_threads) {
-    try {
-      const Scene s = load_scene_file((std::filesystem::path(dir) / "scene.resolved.toml").string());
-      cli::use_default_threads(estimate_memory(s, s.method).items);
-    } catch (const std::exception&) {
-    }
+           bool quiet, bool default_threads, const LimitArgs& limit_args) {
+  // The run's resolved scene; where it cannot be read the resume itself
+  // says what is wrong with the folder.
+  std::optional<Scene> s;
+  try {
+    s = load_scene_file((std::filesystem::path(dir) / kResolvedSceneFile).string());
+  } catch (const std::exception&) {
   }
+  // A later end costs what `runout run --end` would: the run to it, whole,
+  // within the step and output limits. Whether the end itself may be taken
+  // the resume checks against its checkpoint.
+  if (s && end) {
+    s->time.end = *end;
+    require_cost(*s, s->method, estimate_memory(*s, s->method), limits_for(limit_args, &dir));
+  }
+  if (default_threads && s) cli::use_default_threads(estimate_memory(*s, s->method).items);
   std::string why_not;
   const Resumer resumer = mpm_backend(backend, why_not).resume;
   if (!resumer) {
@@ -463,7 +469,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   SceneArgs run_args, check_args;
-  LimitArgs run_limits, check_limits;
+  LimitArgs run_limits, check_limits, resume_limits;
   std::string out;
   RunArgs run_resume_args;  // shared by run and resume
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its frames and history");
@@ -489,6 +495,7 @@ int main(int argc, char** argv) {
                          "Run on to this time [s] instead of the run's end time (a run that "
                          "ended still moving goes on from its last checkpoint)")
       ->check(cli::finite_positive());
+  add_limit_args(resume_cmd, resume_limits);
   CLI::App* check_cmd =
       app.add_subcommand("check", "Validate a scene and print it resolved, with its sizes");
   add_scene_args(check_cmd, check_args);
@@ -532,7 +539,8 @@ int main(int argc, char** argv) {
       return run(loaded.scene, loaded.source, out, backend, quiet, checkpoint_every, run_limits,
                  threads <= 0);
     }
-    if (*resume_cmd) return resume(resume_dir, resume_end, backend, quiet, threads <= 0);
+    if (*resume_cmd)
+      return resume(resume_dir, resume_end, backend, quiet, threads <= 0, resume_limits);
     if (*check_cmd && budget) return budget_check(load(check_args).scene, *budget);
     if (*check_cmd) {
       const LoadedScene loaded = load(check_args);

@@ -166,7 +166,7 @@ pre { background: #f7f7f7; padding: 1em; overflow-x: auto; }
 
 std::string page(const fs::path& out_dir) {
   const RunRecord record = read_run_record(out_dir.string());
-  const std::string scene_path = (out_dir / "scene.resolved.toml").string();
+  const std::string scene_path = (out_dir / kResolvedSceneFile).string();
   const std::string scene_text = read_scene_text(scene_path);
   const Scene scene = parse_scene(scene_text, scene_path);
   const study::History history = study::read_history((out_dir / "history.csv").string());

@@ -145,7 +145,7 @@ RunRecord make_run_record(const RunSummary& summary, const std::string& out_dir,
                           int stop_signal, double peak_memory_mib, const std::string& mechanism) {
   const fs::path dir(out_dir);
   RunRecord r;
-  const fs::path resolved = dir / "scene.resolved.toml";
+  const fs::path resolved = dir / kResolvedSceneFile;
   r.scene_hash =
       scene_hash_text(file_text_or_throw(resolved, "cannot read '" + resolved.string() + "'"));
   if (summary.failed) {

@@ -36,10 +36,6 @@ namespace fs = std::filesystem;
 // History rows come this many times per frame interval.
 inline constexpr int kHistoryPerFrame = 10;
 
-// The scene a run goes on with, in its folder: what `resume` checks a
-// checkpoint's scene against.
-inline constexpr const char* kResolvedSceneFile = "scene.resolved.toml";
-
 // A run replaces what an earlier run left in the same folder, so that no
 // stale frame of a longer run is left beside the new index; temporaries of
 // writes a killed run never finished go too (the folder's lock says no

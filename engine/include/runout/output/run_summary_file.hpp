@@ -11,6 +11,9 @@
 namespace runout {
 
 inline constexpr const char* kSummaryFile = "summary.json";
+// The scene a run goes on with, in its folder: what `resume` checks a
+// checkpoint's scene against, and what the summary's scene_hash hashes.
+inline constexpr const char* kResolvedSceneFile = "scene.resolved.toml";
 
 struct RunRecord {
   std::string scene_hash;  // FNV-1a of scene.resolved.toml (checkpoint.hpp), 16 hex digits
