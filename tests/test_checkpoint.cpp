@@ -276,3 +276,36 @@ TEST_F(CheckpointCli, ResumeWithALaterEndGoesOnAsOneRun) {
       << again.output;
   expect_same_run(straight, out, "small.pvd");
 }
+
+// A `resume --end` writes the folder's scene with the new end before it runs
+// on; stopped (SIGKILL) before its first checkpoint it leaves a folder whose
+// checkpoint still holds the old end. That folder goes on to the new end; a
+// scene changed in anything else is still another run's.
+TEST_F(CheckpointCli, ResumeWithALaterEndStoppedBeforeItsCheckpointGoesOn) {
+  const fs::path straight = run("straight");
+  const fs::path out = folder_.path() / "stopped";
+  const Result first = run_cli("run " + scene_ + " --end 0.2 --checkpoint-every 0.1 -q -t 2 -o " +
+                               out.string());
+  ASSERT_EQ(first.code, 0) << first.output;
+  // The scene a resume --end 0.4 writes, taken from a copy that went on.
+  const fs::path copy = folder_.path() / "copy";
+  fs::copy(out, copy, fs::copy_options::recursive);
+  const Result on = run_cli("resume " + copy.string() + " --end 0.4 -q -t 2");
+  ASSERT_EQ(on.code, 0) << on.output;
+  const std::string extended = read_file(copy / "scene.resolved.toml");
+
+  const std::string own = read_file(out / "scene.resolved.toml");
+  std::ofstream(out / "scene.resolved.toml", std::ios::trunc) << own + "# another run\n";
+  const Result other = run_cli("resume " + out.string() + " -q");
+  EXPECT_EQ(other.code, 65) << other.output;
+  EXPECT_NE(other.output.find("the checkpoint belongs to another run"), std::string::npos)
+      << other.output;
+
+  std::ofstream(out / "scene.resolved.toml", std::ios::trunc) << extended;
+  const Result resumed = run_cli("resume " + out.string() + " -q -t 2");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resumed from the checkpoint at t = 0.1"), std::string::npos)
+      << resumed.output;
+  expect_same_run(straight, out, "small.pvd");
+  EXPECT_EQ(read_file(out / "scene.resolved.toml"), extended);
+}

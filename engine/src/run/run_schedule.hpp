@@ -276,6 +276,29 @@ inline void rewind_folder(const fs::path& dir, const ScheduleState& state,
   fs::remove(dir / kSummaryFile);
 }
 
+// The scene a checkpoint's run goes on with: its own, which the folder's
+// resolved scene must be, or the folder's where that is the checkpoint's
+// with another end after the checkpoint's time, as a `resume --end` writes
+// it before it runs on: one stopped before its first checkpoint leaves such
+// a folder, and it goes on to that end. Anything else throws require_same_scene's CheckpointError.
+inline Scene resumed_scene(const CheckpointState& state, const fs::path& dir,
+                           const std::string& path) {
+  const std::string resolved = (dir / kResolvedSceneFile).string();
+  try {
+    require_same_scene(state, resolved, path);
+  } catch (const CheckpointError&) {
+    Scene extended = parse_scene(state.scene_toml, path + " (its scene)");
+    try {
+      const std::string text = read_scene_text(resolved);
+      apply_overrides(extended, std::nullopt, std::nullopt, parse_scene(text, resolved).time.end);
+      if (extended.time.end > state.counters.time && to_toml(extended) == text) return extended;
+    } catch (const std::exception&) {
+    }
+    throw;
+  }
+  return parse_scene(state.scene_toml, path + " (its scene)");
+}
+
 // The scene and state of a run to resume from the checkpoint in
 // options.out_dir, with the folder locked for this process (run_mpm
 // releases it) and rewound to the checkpoint. Everything is checked before
@@ -291,8 +314,7 @@ inline Checkpoint load_for_resume(const RunOptions& options, Scene& scene) {
   lock_output_folder(dir.string());
   try {
     Checkpoint cp = read_checkpoint(path);
-    require_same_scene(cp.state, (dir / kResolvedSceneFile).string(), path);
-    scene = parse_scene(cp.state.scene_toml, path + " (its scene)");
+    scene = resumed_scene(cp.state, dir, path);
     require_particles_fit(cp.particles, scene, path);
     require_schedule(cp.state.schedule, path);
     if (options.end) {
