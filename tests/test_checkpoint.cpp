@@ -309,3 +309,17 @@ TEST_F(CheckpointCli, ResumeWithALaterEndStoppedBeforeItsCheckpointGoesOn) {
   expect_same_run(straight, out, "small.pvd");
   EXPECT_EQ(read_file(out / "scene.resolved.toml"), extended);
 }
+
+// Rows of this build's columns are not appended under another version's
+// header: a folder whose history.csv has other columns is refused whole.
+TEST_F(CheckpointCli, ResumeRefusesAHistoryOfOtherColumns) {
+  const fs::path out = run("other", "--checkpoint-every 0.2");
+  const std::string history = read_file(out / "history.csv");
+  const std::string older = "time,step,dt,toe" + history.substr(history.find('\n'));
+  std::ofstream(out / "history.csv", std::ios::trunc) << older;
+  const Result r = run_cli("resume " + out.string() + " -q");
+  EXPECT_EQ(r.code, 79) << r.output;
+  EXPECT_NE(r.output.find("has another version's columns (time,step,dt,toe)"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(read_file(out / "history.csv"), older) << "a refused resume leaves the folder";
+}

@@ -15,6 +15,7 @@
 
 #include "runout/measure/basal_fill.hpp"
 #include "runout/measure/morphology.hpp"
+#include "runout/measure/remoulded_mass.hpp"
 #include "runout/mpm/base.hpp"
 #include "runout/run/rest_detector.hpp"
 
@@ -579,4 +580,47 @@ TEST(BasalFill, AThinLayerHasNoBasalLayerToMeasure) {
       with_lattice_volumes(make_particles(rectangle(planar_frame(0.0), 0.0, 2.0 * h, 5.0)));
   EXPECT_TRUE(std::isnan(basal_fill(narrow, planar_base(0.0), h)));
   EXPECT_TRUE(std::isnan(basal_fill(Particles{}, planar_base(0.0), h)));
+}
+
+// ---------------------------------------------------------------- remoulded_mass.hpp
+
+// The remoulded mass counts a particle of a softening clay once its own
+// plastic shear has taken 95 % of the strength remoulding can take (S(xi)
+// within e^-3 (1 - 1/St) of 1/St), and nothing of a clay that does not
+// soften, of an elastic body, or of the basal band's remoulding.
+TEST(RemouldedMass, CountsTheClayThatHasLost95PercentOfWhatItCanLose) {
+  std::vector<MaterialParams> materials(3);
+  materials[0].model = MaterialModel::Tresca;
+  materials[0].strength.su0 = 5000.0;
+  materials[0].strength.d_rem = 1.0 / 40.0;
+  materials[0].strength.xi95 = 5.0;
+  materials[1] = materials[0];
+  materials[1].strength.d_rem = 1.0;  // St = 1
+  materials[2] = elastic_params(600.0, 5e5, 0.49);
+
+  struct Point {
+    int material;
+    double xi, band_xi, mass;
+  };
+  const std::vector<Point> points = {{0, 0.0, 0.0, 1.0},   {0, 4.99, 0.0, 2.0},
+                                     {0, 5.0, 0.0, 4.0},   {0, 120.0, 0.0, 8.0},
+                                     {0, 0.5, 900.0, 16.0}, {1, 120.0, 0.0, 32.0},
+                                     {2, 120.0, 0.0, 64.0}};
+  Particles P;
+  P.resize(static_cast<int>(points.size()));
+  double expected = 0.0;
+  for (int p = 0; p < P.size(); ++p) {
+    P.material[p] = points[p].material;
+    P.xi[p] = points[p].xi;
+    P.band_xi[p] = points[p].band_xi;
+    P.mass[p] = points[p].mass;
+    const StrengthParams& k = materials[points[p].material].strength;
+    const double left = softening(k, points[p].xi) - k.d_rem;
+    const bool lost_95 = materials[points[p].material].model == MaterialModel::Tresca &&
+                         k.d_rem < 1.0 && left <= std::exp(-3.0) * (1.0 - k.d_rem) * (1 + 1e-12);
+    if (lost_95) expected += points[p].mass;
+  }
+  EXPECT_EQ(expected, 12.0);  // the particles at xi95 and far past it
+  EXPECT_EQ(remoulded_mass(P, materials), expected);
+  EXPECT_EQ(remoulded_mass(Particles{}, materials), 0.0);
 }

@@ -20,18 +20,18 @@ namespace {
 constexpr const char* kHeader =
     "time,step,dt,toe,toe_velocity,runout,rear,length,max_thickness,centroid_x,centroid_y,"
     "centroid_s,centroid_velocity,max_speed,kinetic_energy,basal_shear_force,outside_mass,"
-    "momentum_x,momentum_y,basal_fill,runout_95\n";
+    "momentum_x,momentum_y,basal_fill,runout_95,remoulded_mass\n";
 
 std::string row_text(const HistoryRow& r) {
   char line[1024];
   std::snprintf(
       line, sizeof line,
       "%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-      "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+      "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
       r.time, r.step, r.dt, r.toe, r.toe_velocity, r.runout, r.rear, r.length,
       r.max_thickness, r.centroid_x, r.centroid_y, r.centroid_s, r.centroid_velocity,
       r.max_speed, r.kinetic_energy, r.basal_shear_force, r.outside_mass, r.momentum_x,
-      r.momentum_y, r.basal_fill, r.runout_95);
+      r.momentum_y, r.basal_fill, r.runout_95, r.remoulded_mass);
   return line;
 }
 
@@ -85,6 +85,11 @@ std::string first_history_rows(const std::string& path, long rows) {
   long lines = 0;
   // Only whole lines: a row's newline is written with it.
   while (lines <= rows && std::getline(in, line) && !in.eof()) {
+    // Rows of this version's columns under another version's header would
+    // be read by the header's names.
+    if (lines == 0 && line + '\n' != kHeader)
+      throw std::runtime_error("'" + path + "' has another version's columns (" + line +
+                               "); this build writes " + std::string(kHeader, std::strlen(kHeader) - 1));
     kept += line + '\n';
     ++lines;
   }
@@ -97,7 +102,8 @@ std::string first_history_rows(const std::string& path, long rows) {
 
 HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& m,
                            double initial_toe, double time, long step, double dt,
-                           double basal_shear_force, double basal_fill) {
+                           double basal_shear_force, double basal_fill,
+                           double remoulded_mass) {
   const ParticleTotals t = particle_totals(particles);
   return HistoryRow{time,
                     step,
@@ -119,7 +125,8 @@ HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& m,
                     t.momentum_x,
                     t.momentum_y,
                     basal_fill,
-                    m.mass_front_s - initial_toe};
+                    m.mass_front_s - initial_toe,
+                    remoulded_mass};
 }
 
 }  // namespace runout

@@ -20,6 +20,7 @@
 #include "runout/dam/dam.hpp"
 #include "runout/output/history.hpp"
 #include "runout/measure/basal_fill.hpp"
+#include "runout/measure/remoulded_mass.hpp"
 #include "runout/measure/morphology.hpp"
 #include "runout/run/run.hpp"
 #include "runout/run/rest_detector.hpp"
@@ -430,7 +431,8 @@ RunSummary run_mpm(const Scene& scene, const RunOptions& options, Clock::time_po
     const SlideMorphology shape = measure_slide(P, base, spacing);
     history.append(mpm_history_row(P, shape, initial_toe, sim.time(),
                                    sim.steps(), sim.last_dt(), sim.basal_shear_force(),
-                                   basal_fill(P, base, scene.grid.cell_size)));
+                                   basal_fill(P, base, scene.grid.cell_size),
+                                   remoulded_mass(P, sim.materials())));
     return rest.at_rest(sim.time(), shape.toe_velocity,
                         std::hypot(shape.centroid_vx, shape.centroid_vy), shape.block_speed);
   };

@@ -23,20 +23,23 @@ struct HistoryRow {
   double momentum_x = 0, momentum_y = 0;
   double basal_fill = NAN;  // basal_fill.hpp; NaN for the depth-averaged model
   double runout_95 = 0;     // the mass front (morphology.hpp) past the toe at t = 0
+  double remoulded_mass = NAN;  // remoulded_mass.hpp; NaN for the depth-averaged model
 };
 
 // The row of an MPM run (CPU or CUDA) from its particles on the host and
 // their morphology; initial_toe: the main body's toe at t = 0, from which
 // runout (the toe's) and runout_95 (the mass front's) are measured;
-// basal_fill: basal_fill.hpp.
+// basal_fill: basal_fill.hpp; remoulded_mass: remoulded_mass.hpp.
 HistoryRow mpm_history_row(const Particles& particles, const SlideMorphology& shape,
                            double initial_toe, double time, long step, double dt,
-                           double basal_shear_force, double basal_fill);
+                           double basal_shear_force, double basal_fill,
+                           double remoulded_mass);
 
 // history.csv's header and first `rows` rows (a resumed run's rows up to
 // its checkpoint), without whatever a killed run wrote after them, a torn
 // last line included; the caller writes them back. Throws
-// std::runtime_error when the file is missing or holds fewer rows.
+// std::runtime_error when the file is missing, holds fewer rows, or has
+// another header than this build writes.
 std::string first_history_rows(const std::string& path, long rows);
 
 class HistoryWriter {
