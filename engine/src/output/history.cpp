@@ -88,8 +88,9 @@ std::string first_history_rows(const std::string& path, long rows) {
     // Rows of this version's columns under another version's header would
     // be read by the header's names.
     if (lines == 0 && line + '\n' != kHeader)
-      throw std::runtime_error("'" + path + "' has another version's columns (" + line +
-                               "); this build writes " + std::string(kHeader, std::strlen(kHeader) - 1));
+      throw std::runtime_error("'" + path + "' has another version's columns (" +
+                               line.substr(0, 200) + "); this build writes " +
+                               std::string(kHeader, std::strlen(kHeader) - 1));
     kept += line + '\n';
     ++lines;
   }
