@@ -404,11 +404,14 @@ int resume(const std::string& dir, std::optional<double> end, const std::string&
   // A later end costs what `runout run --end` would: the run to it, whole,
   // within the step and output limits. Whether the end itself may be taken
   // the resume checks against its checkpoint.
-  if (s && end) {
-    s->time.end = *end;
-    require_cost(*s, s->method, estimate_memory(*s, s->method), limits_for(limit_args, &dir));
+  if (s) {
+    const MemoryEstimate memory = estimate_memory(*s, s->method);
+    if (end) {
+      s->time.end = *end;
+      require_cost(*s, s->method, memory, limits_for(limit_args, &dir));
+    }
+    if (default_threads) cli::use_default_threads(memory.items);
   }
-  if (default_threads && s) cli::use_default_threads(estimate_memory(*s, s->method).items);
   std::string why_not;
   const Resumer resumer = mpm_backend(backend, why_not).resume;
   if (!resumer) {

@@ -281,15 +281,18 @@ inline void rewind_folder(const fs::path& dir, const ScheduleState& state,
 // resolved scene must be, or the folder's where that is the checkpoint's
 // with another end after the checkpoint's time, as a `resume --end` writes
 // it before it runs on: one stopped before its first checkpoint leaves such
-// a folder, and it goes on to that end. Anything else throws require_same_scene's CheckpointError.
+// a folder, and it goes on to that end. Anything else throws
+// require_same_scene's CheckpointError.
 inline Scene resumed_scene(const CheckpointState& state, const fs::path& dir,
                            const std::string& path) {
   const std::string resolved = (dir / kResolvedSceneFile).string();
+  const std::string own = path + " (its scene)";
   try {
     require_same_scene(state, resolved, path);
+    return parse_scene(state.scene_toml, own);
   } catch (const CheckpointError&) {
-    Scene extended = parse_scene(state.scene_toml, path + " (its scene)");
     try {
+      Scene extended = parse_scene(state.scene_toml, own);
       const std::string text = read_scene_text(resolved);
       apply_overrides(extended, std::nullopt, std::nullopt, parse_scene(text, resolved).time.end);
       if (extended.time.end > state.counters.time && to_toml(extended) == text) return extended;
@@ -297,7 +300,6 @@ inline Scene resumed_scene(const CheckpointState& state, const fs::path& dir,
     }
     throw;
   }
-  return parse_scene(state.scene_toml, path + " (its scene)");
 }
 
 // The scene and state of a run to resume from the checkpoint in
